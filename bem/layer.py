@@ -1,0 +1,338 @@
+"""Fourier-space surface compliance of a bonded incompressible layer in a moving frame.
+
+For one Fourier mode ``exp(i (nu_x x + nu_y y))`` the paper (eqs. 43-50) writes the
+state ``q = (w, u, v, sigma_z, tau_xz, tau_yz)`` as ``q(z) = exp(A z) q(0)`` and, with the
+displacements zero on the rigid base, relates the top displacements to the top tractions
+by the 3x3 matrix ``C = T12(H) T22(H)^-1``:
+
+    (w, u, v)(H) = C (sigma_z, tau_xz, tau_yz)(H)          [m/Pa]
+
+Two independent evaluations live here:
+
+* :func:`surface_compliance_expm`, the paper's route (matrix exponential of eq. 45), kept
+  as the reference. For large ``kH`` the exponential overflows, so the layer is split
+  into sublayers of ``k h <= 8`` and the compliance is propagated upwards by the exact
+  composition ``C <- (T11 C + T12) (T21 C + T22)^-1`` (which starts from ``C = 0`` at the
+  bonded base and gives eq. 50 after one sublayer).
+* :func:`surface_compliance`, a closed form. In axes along and across the wave vector the
+  mode splits into an antiplane part ``u_T = tanh(qH) / (G q) tau_T`` and an in-plane part
+  ``(w, u_L)`` whose vertical displacement obeys ``(D^2 - k^2)(D^2 - q^2) w = 0``, with
+  ``k^2 = nu_x^2 + nu_y^2`` and ``q^2 = k^2 - rho V^2 nu_x^2 / G*``. Its solutions that
+  satisfy the base conditions are built from divided differences in ``lambda = k^2`` of
+  the entire functions ``cosh(sqrt(lambda) z)`` and ``sinh(sqrt(lambda) z)/sqrt(lambda)``,
+  so everything is analytic at ``k = 0`` and at ``q = k`` (no inertia); they are
+  evaluated by power series for ``kH <= 1`` and with decaying exponentials otherwise
+  (the common growth ``exp(kappa H)`` cancels in ``N M^-1``), so the result is finite
+  and accurate from ``kH = 0`` to the half-space limit.
+
+Transcription note (checked by ``tests/unit/test_derivation_eq45.py``): eq. 27 of the
+paper prints ``beta_y = (nu_x^2 + 4 nu_y^2) G* - rho V^2 nu_y^2``. The inertia term comes
+from ``rho V^2 d^2/dx^2`` (eqs. 8, 35) and is ``- rho V^2 nu_x^2`` in every diagonal
+entry; :func:`system_matrix` uses the corrected form.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.linalg import expm
+
+__all__ = ["system_matrix", "surface_compliance", "surface_compliance_expm", "normal_compliance"]
+
+
+def system_matrix(nu_x, nu_y, G, rho_V2):
+    """The 6x6 matrix ``A`` of eq. 45 (with ``beta_y`` corrected, see module docstring).
+
+    Parameters
+    ----------
+    nu_x, nu_y : float
+        Wavenumbers (rad/m).
+    G : complex
+        Complex shear modulus ``G*(omega_m)`` (Pa).
+    rho_V2 : float
+        ``rho V^2`` (Pa): density (kg/m^3) times the squared speed (m/s)^2.
+
+    Returns
+    -------
+    ndarray, shape (6, 6), complex
+        ``dq/dz = A q`` for ``q = (w, u, v, sigma_z, tau_xz, tau_yz)`` (eq. 43).
+    """
+    G = complex(G)
+    inertia = rho_V2 * nu_x**2
+    bx = (4 * nu_x**2 + nu_y**2) * G - inertia
+    by = (nu_x**2 + 4 * nu_y**2) * G - inertia
+    bxy = 3 * nu_x * nu_y * G
+    ix, iy = 1j * nu_x, 1j * nu_y
+    return np.array(
+        [
+            [0, -ix, -iy, 0, 0, 0],
+            [-ix, 0, 0, 0, 1 / G, 0],
+            [-iy, 0, 0, 0, 0, 1 / G],
+            [-inertia, 0, 0, 0, -ix, -iy],
+            [0, bx, bxy, -ix, 0, 0],
+            [0, bxy, by, -iy, 0, 0],
+        ],
+        dtype=complex,
+    )
+
+
+def surface_compliance_expm(nu_x, nu_y, G, rho_V2, H, max_kh=8.0):
+    """Reference compliance ``T12 T22^-1`` (eq. 50) from the matrix exponential.
+
+    Parameters as in :func:`surface_compliance` but scalars only; ``max_kh`` is the largest
+    ``k h`` of one sublayer (the composition is exact, so it only guards overflow).
+
+    Returns
+    -------
+    ndarray, shape (3, 3), complex
+        Maps ``(sigma_z, tau_xz, tau_yz)`` (Pa) to ``(w, u, v)`` (m).
+    """
+    k = float(np.hypot(nu_x, nu_y))
+    scale = max(k, abs(np.sqrt(complex(k * k - rho_V2 * nu_x**2 / complex(G)))))
+    n_sub = max(1, int(np.ceil(scale * H / max_kh)))
+    T = expm(system_matrix(nu_x, nu_y, G, rho_V2) * (H / n_sub))
+    T11, T12, T21, T22 = T[:3, :3], T[:3, 3:], T[3:, :3], T[3:, 3:]
+    C = np.zeros((3, 3), dtype=complex)
+    for _ in range(n_sub):
+        C = np.linalg.solve((T21 @ C + T22).T, (T11 @ C + T12).T).T
+    return C
+
+
+# ---------------------------------------------------------------------------------------
+# closed form
+
+
+def _exprel(z):
+    """``(exp(z) - 1) / z`` for complex ``z`` with ``Re z <= 0``, accurate near 0."""
+    z = np.asarray(z, dtype=complex)
+    out = np.empty_like(z)
+    small = np.abs(z) < 0.5
+    zs = z[small]
+    term = np.ones_like(zs)
+    acc = np.ones_like(zs)
+    for j in range(2, 20):
+        term = term * zs / j
+        acc = acc + term
+    out[small] = acc
+    zl = z[~small]
+    out[~small] = np.expm1(zl) / zl
+    return out
+
+
+def _scaled_sinh_over(s, H, kappa):
+    """``exp(-kappa H) sinh(s H) / s`` (m), accurate for small ``|s| H``."""
+    out = np.empty(np.broadcast(s, kappa).shape, dtype=complex)
+    s, kappa = np.broadcast_arrays(s, kappa)
+    small = np.abs(s) * H < 1.0
+    x = s[small] * H
+    x2 = x * x
+    term = np.ones_like(x)
+    acc = np.ones_like(x)
+    for j in range(1, 12):
+        term = term * x2 / ((2 * j) * (2 * j + 1))
+        acc = acc + term
+    out[small] = H * acc * np.exp(-kappa[small] * H)
+    sl, kl = s[~small], kappa[~small]
+    out[~small] = (np.exp((sl - kl) * H) - np.exp(-(sl + kl) * H)) / (2 * sl)
+    return out
+
+
+def _scaled_cosh(s, H, kappa):
+    """``exp(-kappa H) cosh(s H)`` (-)."""
+    return 0.5 * (np.exp((s - kappa) * H) + np.exp(-(s + kappa) * H))
+
+
+def _dd_series(a, b, H, odd):
+    """Divided difference in ``lambda`` of ``cosh(sqrt(l) H)`` (odd=False, units m^2) or
+    ``sinh(sqrt(l) H)/sqrt(l)`` (odd=True, units m^3) at ``a, b`` (1/m^2), by power series
+    (for ``|a| H^2, |b| H^2 <= 1``)."""
+    al, be = a * H * H, b * H * H
+    h = np.ones_like(al)  # h_0
+    bp = np.ones_like(al)  # be^j
+    fact = 6.0 if odd else 2.0  # (2j+1)! or (2j)! for j = 1
+    acc = h / fact
+    for j in range(2, 16):
+        bp = bp * be
+        h = al * h + bp  # complete homogeneous symmetric polynomial h_{j-1}
+        fact *= (2 * j) * (2 * j + 1) if odd else (2 * j - 1) * (2 * j)
+        acc = acc + h / fact
+    return acc * (H**3 if odd else H**2)
+
+
+def _dsc(x, y, H, kappa):
+    """``exp(-kappa H) (exp(x H) - exp(y H)) / (x - y)`` (m), symmetric, stable."""
+    swap = y.real > x.real
+    hi = np.where(swap, y, x)
+    lo = np.where(swap, x, y)
+    return H * np.exp((hi - kappa) * H) * _exprel((lo - hi) * H)
+
+
+def _divided_differences(k, q, H, kappa):
+    """Scaled ``Gc[k^2, q^2]`` (m^2) and ``F[k^2, q^2]`` (m^3), see module docstring."""
+    a, b = (k * k).astype(complex), q * q
+    phi2 = np.empty(a.shape, dtype=complex)
+    phi1 = np.empty(a.shape, dtype=complex)
+    big = np.maximum(np.abs(a), np.abs(b))
+    series = big * H * H <= 1.0
+    close = ~series & (np.abs(a - b) <= 0.5 * big)
+    direct = ~series & ~close
+
+    i = series
+    scale = np.exp(-kappa[i] * H)
+    phi2[i] = _dd_series(a[i], b[i], H, odd=False) * scale
+    phi1[i] = _dd_series(a[i], b[i], H, odd=True) * scale
+
+    i = close
+    kk, qq, kap = k[i].astype(complex), q[i], kappa[i]
+    dp = _dsc(kk, qq, H, kap)
+    dm = _dsc(-kk, -qq, H, kap)
+    phi2[i] = (dp - dm) / (2 * (kk + qq))
+    e_plus = (qq * dp - np.exp((qq - kap) * H)) / (kk * qq)
+    e_minus = (-qq * dm - np.exp((-qq - kap) * H)) / (kk * qq)
+    phi1[i] = (e_plus - e_minus) / (2 * (kk + qq))
+
+    i = direct
+    kk, qq, kap = k[i].astype(complex), q[i], kappa[i]
+    da = a[i] - b[i]
+    phi2[i] = (_scaled_cosh(kk, H, kap) - _scaled_cosh(qq, H, kap)) / da
+    phi1[i] = (_scaled_sinh_over(kk, H, kap) - _scaled_sinh_over(qq, H, kap)) / da
+    return phi2, phi1
+
+
+def _dd_exp(x, y, t):
+    """``(exp(x t) - exp(y t)) / (x - y)`` (m), symmetric in ``x, y``, stable as ``x -> y``."""
+    swap = y.real > x.real
+    hi = np.where(swap, y, x)
+    lo = np.where(swap, x, y)
+    return t * np.exp(hi * t) * _exprel((lo - hi) * t)
+
+
+def _wave_frame_small(k, q, H):
+    """In-plane compliances for ``kH <= 2``: bases analytic in ``k^2`` (divided differences).
+
+    Returns ``c_zz, c_zL/k, c_Lz/k, c_LL`` times ``G``.
+    """
+    kappa = np.maximum(k, q.real)
+    phi2, phi1 = _divided_differences(k, q, H, kappa)
+    ch = _scaled_cosh(k, H, kappa)
+    sh = 0.5 * (np.exp((k - kappa) * H) - np.exp(-(k + kappa) * H))
+    shk = _scaled_sinh_over(k, H, kappa)
+    q2 = q * q
+    dphi2 = shk + q2 * phi1  # (lambda F)[k^2, q^2]
+    ddphi2 = ch + q2 * phi2  # (lambda Gc)[k^2, q^2]
+    k2 = k * k
+    s1 = -ch + 2 * k2 * phi2  # sigma_z / G of the two basis solutions
+    s2 = -sh + 2 * k * dphi2
+    t1 = k * (dphi2 + k2 * phi1)  # tau_L / (i G)
+    t2 = ddphi2 + k2 * phi2
+    det = s1 * t2 - s2 * t1
+    c_zz = (k2 * phi1 * t2 - k * phi2 * t1) / det
+    c_zL_k = -1j * (phi2 * s1 - k * phi1 * s2) / det
+    c_Lz_k = 1j * (phi2 * t2 - dphi2 * (dphi2 + k2 * phi1)) / det
+    c_LL = (dphi2 * s1 - k * phi2 * s2) / det
+    return c_zz, c_zL_k, c_Lz_k, c_LL
+
+
+def _wave_frame_large(k, q, H):
+    """In-plane compliances for ``kH > 2``, times ``G``.
+
+    Basis of ``(D^2 - k^2)(D^2 - q^2) w = 0`` anchored at the boundary each function decays
+    from: ``a1 = e^{-k(H-z)}``, ``a2 = (e^{-q(H-z)} - e^{-k(H-z)})/(k - q)``,
+    ``b1 = e^{-kz}``, ``b2 = (e^{-qz} - e^{-kz})/(k - q)``; all bounded, independent as
+    ``q -> k``. Pressure from ``p = G (D^3 - q^2 D) w / k^2``. The base conditions
+    ``w = w' = 0`` fix the ``b`` coefficients; the top tractions fix ``a``.
+    """
+    E = np.exp(-k * H)
+    A0 = _dd_exp(-q, -k.astype(complex), H)  # a2(0) = b2(H)
+    A0p = q * A0 - E  # a2'(0)
+    # b coefficients (c3, c4) in terms of the a coefficients (c1, c2)
+    c3 = (-E, -A0)
+    c4 = (-2 * k * E, -(A0p + k * A0))
+    kq = k + q
+    # top values of w, w', w'', p/G for each basis function: (a1, a2, b1, b2)
+    w = (1.0, 0.0, E, A0)
+    dw = (k, -1.0, -k * E, -q * A0 + E)
+    ddw = (k * k, -kq, k * k * E, q * q * A0 - kq * E)
+    p = ((k - q) * kq / k, -kq / k, -(k - q) * kq * E / k, kq * E / k)
+
+    def top(f):
+        return tuple(f[j] + c3[j] * f[2] + c4[j] * f[3] for j in (0, 1))
+
+    W, DW, DDW, P = top(w), top(dw), top(ddw), top(p)
+    S = tuple(-P[j] + 2 * DW[j] for j in (0, 1))  # sigma_z / G
+    T = tuple((DDW[j] + k * k * W[j]) / k for j in (0, 1))  # tau_L / (i G)
+    U = tuple(DW[j] / k for j in (0, 1))  # u_L / i
+    det = S[0] * T[1] - S[1] * T[0]
+    c_zz = (W[0] * T[1] - W[1] * T[0]) / det
+    c_zL_k = -1j * (W[1] * S[0] - W[0] * S[1]) / det / k
+    c_Lz_k = 1j * (U[0] * T[1] - U[1] * T[0]) / det / k
+    c_LL = (U[1] * S[0] - U[0] * S[1]) / det
+    return c_zz, c_zL_k, c_Lz_k, c_LL
+
+
+def _mode_parts(nu_x, nu_y, G, rho_V2, H):
+    """Compliances in the wave frame: ``k``, ``c_zz``, ``c_zL/k``, ``c_Lz/k``, ``c_LL``,
+    ``c_TT`` (m/Pa, or m^2/Pa for the ``/k`` ones)."""
+    nu_x, nu_y, G = np.broadcast_arrays(
+        np.asarray(nu_x, float), np.asarray(nu_y, float), np.asarray(G, complex)
+    )
+    k = np.hypot(nu_x, nu_y)
+    q = np.sqrt(k * k - rho_V2 * nu_x**2 / G)  # principal root, Re q >= 0
+    parts = [np.empty(k.shape, dtype=complex) for _ in range(4)]
+    small = k * H <= 2.0
+    for mask, fn in ((small, _wave_frame_small), (~small, _wave_frame_large)):
+        if mask.any():
+            for out, val in zip(parts, fn(k[mask], q[mask], H)):
+                out[mask] = val / G[mask]
+
+    # antiplane part: tanh(qH) / (G q), even in q
+    tq = np.empty_like(q)
+    sq = np.abs(q) * H < 1.0
+    tq[sq] = _scaled_sinh_over(q[sq], H, np.zeros(sq.sum())) / np.cosh(q[sq] * H)
+    qb = q[~sq]
+    e2 = np.exp(-2 * qb * H)
+    tq[~sq] = (1 - e2) / ((1 + e2) * qb)
+    return (k, *parts, tq / G)
+
+
+def surface_compliance(nu_x, nu_y, G, rho_V2, H):
+    """Closed-form surface compliance ``T12 T22^-1`` of eq. 50, all nine entries.
+
+    Parameters
+    ----------
+    nu_x, nu_y : array_like
+        Wavenumbers (rad/m), broadcastable.
+    G : array_like of complex
+        Complex shear modulus at the mode's frequency ``omega = -nu_x V`` (Pa).
+    rho_V2 : float
+        Density (kg/m^3) times squared speed (m^2/s^2), in Pa. 0 for no inertia.
+    H : float
+        Layer thickness (m).
+
+    Returns
+    -------
+    ndarray, shape (..., 3, 3), complex
+        ``(w, u, v) = C (sigma_z, tau_xz, tau_yz)``, in m/Pa; ``sigma_z`` positive in
+        tension, ``w`` positive upwards (away from the base).
+    """
+    nu_x, nu_y = np.broadcast_arrays(np.asarray(nu_x, float), np.asarray(nu_y, float))
+    k, c_zz, c_zL_k, c_Lz_k, c_LL, c_TT = _mode_parts(nu_x, nu_y, G, rho_V2, H)
+    nu_x, nu_y = np.broadcast_to(nu_x, k.shape), np.broadcast_to(nu_y, k.shape)
+    zero = k == 0
+    ks = np.where(zero, 1.0, k)
+    cx = np.where(zero, 1.0, nu_x / ks)  # at k = 0, c_LL = c_TT = H/G: any unit direction
+    sy = np.where(zero, 0.0, nu_y / ks)
+    C = np.empty(k.shape + (3, 3), dtype=complex)
+    C[..., 0, 0] = c_zz
+    C[..., 0, 1] = c_zL_k * nu_x
+    C[..., 0, 2] = c_zL_k * nu_y
+    C[..., 1, 0] = c_Lz_k * nu_x
+    C[..., 2, 0] = c_Lz_k * nu_y
+    C[..., 1, 1] = cx * cx * c_LL + sy * sy * c_TT
+    C[..., 2, 2] = sy * sy * c_LL + cx * cx * c_TT
+    C[..., 1, 2] = C[..., 2, 1] = cx * sy * (c_LL - c_TT)
+    return C
+
+
+def normal_compliance(nu_x, nu_y, G, rho_V2, H):
+    """The ``w / sigma_z`` entry of :func:`surface_compliance` alone (m/Pa), cheaper."""
+    return _mode_parts(nu_x, nu_y, G, rho_V2, H)[1]
