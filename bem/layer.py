@@ -33,10 +33,41 @@ entry; :func:`system_matrix` uses the corrected form.
 
 from __future__ import annotations
 
+import math
+from dataclasses import dataclass
+
 import numpy as np
 from scipy.linalg import expm
 
-__all__ = ["system_matrix", "surface_compliance", "surface_compliance_expm", "normal_compliance"]
+__all__ = ["Layer", "system_matrix", "surface_compliance", "surface_compliance_expm", "normal_compliance"]
+
+
+@dataclass(frozen=True)
+class Layer:
+    """An incompressible linear viscoelastic layer bonded to a rigid base.
+
+    Parameters
+    ----------
+    thickness : float
+        ``H`` (m), > 0.
+    material : object
+        Has ``modulus(omega) -> G*(omega)`` (Pa) for angular frequencies (rad/s); see
+        :mod:`bem.materials`.
+    density : float
+        ``rho`` (kg/m^3), >= 0; 0 drops the inertia terms ``rho V^2``.
+    """
+
+    thickness: float
+    material: object
+    density: float = 0.0
+
+    def __post_init__(self) -> None:
+        if not (isinstance(self.thickness, (int, float)) and math.isfinite(self.thickness) and self.thickness > 0):
+            raise ValueError(f"thickness must be > 0 m, got {self.thickness!r}")
+        if not (isinstance(self.density, (int, float)) and math.isfinite(self.density) and self.density >= 0):
+            raise ValueError(f"density must be >= 0 kg/m^3, got {self.density!r}")
+        if not callable(getattr(self.material, "modulus", None)):
+            raise TypeError(f"material must have a modulus(omega) method, got {self.material!r}")
 
 
 def system_matrix(nu_x, nu_y, G, rho_V2):
@@ -269,6 +300,17 @@ def _wave_frame_large(k, q, H):
     return c_zz, c_zL_k, c_Lz_k, c_LL
 
 
+def _wave_frame_halfspace(k, q):
+    """In-plane compliances of a half-space (``kH, Re(q) H > 50``: the base terms of
+    :func:`_wave_frame_large` are below ``exp(-50)``), times ``G``. ``R`` is the
+    incompressible Rayleigh function ``q^3 + k q^2 + 3 k^2 q - k^3`` (``4 k^3`` at rest)."""
+    R = q * (q * (q + k) + 3 * k * k) - k**3
+    return k * (k + q) / R, 1j * (k - q) / R, -1j * (k - q) / R, q * (q + k) / R
+
+
+_HALFSPACE_KH = 50.0
+
+
 def _mode_parts(nu_x, nu_y, G, rho_V2, H):
     """Compliances in the wave frame: ``k``, ``c_zz``, ``c_zL/k``, ``c_Lz/k``, ``c_LL``,
     ``c_TT`` (m/Pa, or m^2/Pa for the ``/k`` ones)."""
@@ -277,11 +319,20 @@ def _mode_parts(nu_x, nu_y, G, rho_V2, H):
     )
     k = np.hypot(nu_x, nu_y)
     q = np.sqrt(k * k - rho_V2 * nu_x**2 / G)  # principal root, Re q >= 0
+    half = np.minimum(k, q.real) * H > _HALFSPACE_KH
+    if half.all():  # the common case for the high modes: no masking
+        parts = [v / G for v in _wave_frame_halfspace(k, q)]
+        return (k, *parts, 1 / (G * q))
     parts = [np.empty(k.shape, dtype=complex) for _ in range(4)]
     small = k * H <= 2.0
-    for mask, fn in ((small, _wave_frame_small), (~small, _wave_frame_large)):
+    regimes = (
+        (small, _wave_frame_small, (H,)),
+        (~small & ~half, _wave_frame_large, (H,)),
+        (half, _wave_frame_halfspace, ()),
+    )
+    for mask, fn, extra in regimes:
         if mask.any():
-            for out, val in zip(parts, fn(k[mask], q[mask], H)):
+            for out, val in zip(parts, fn(k[mask], q[mask], *extra)):
                 out[mask] = val / G[mask]
 
     # antiplane part: tanh(qH) / (G q), even in q

@@ -1,0 +1,183 @@
+"""Influence kernels: the paper's truncated double Fourier sums (eqs. 52-62).
+
+The displacement in direction ``P`` at node ``M`` due to a unit force in direction ``Q``
+spread uniformly over the patch of node ``N`` (eq. 52) is, with ``nu = (2 pi m / L_x,
+2 pi n / L_y)`` and ``|m| <= N_tx``, ``|n| <= N_ty``,
+
+    C_PQ(M, N) = sum_mn  sinc(m a_x / L_x) sinc(n a_y / L_y) / (L_x L_y)
+                         * C_PQ(nu; G*(omega_m)) exp(i nu . (x_M - x_N))      (eqs. 56-62)
+
+which depends on the node offset only (the "configurational similarity" of section 8).
+:func:`influence_kernels` evaluates it for every offset of the grid at once: the mode
+symbols on the quarter ``m, n >= 0`` (reality ``g(-m, -n) = conj g(m, n)`` and parity in
+``n``), then two chirp-z (Bluestein) transforms, exact for any ``a / L``, at a cost of
+``O(N_t^2 log N_t)``. :func:`influence_kernels_direct` is the paper's route, summing every
+term for two source nodes, kept as the slow reference.
+
+A kernel table ``K`` has shape ``(2 K_y - 1, 2 K_x - 1)``; ``K[dy + K_y - 1, dx + K_x - 1]``
+is the displacement (m) at offset ``(dx a_x, dy a_y)`` from a unit force (N), with the
+traction sign of the paper (``sigma_z`` positive in tension, displacements positive along
+``+z, +x, +y``).
+"""
+
+from __future__ import annotations
+
+import os
+from concurrent.futures import ThreadPoolExecutor
+
+import numpy as np
+import scipy.fft as sfft
+
+from .grid import Grid
+from .layer import Layer, normal_compliance, surface_compliance
+
+__all__ = ["BLOCKS", "influence_kernels", "influence_kernels_direct", "mode_symbols"]
+
+#: block name -> (row, column) in the 3x3 compliance, rows/cols ordered (w, u, v)
+BLOCKS = {p + q: (i, j) for i, p in enumerate("wuv") for j, q in enumerate("wuv")}
+_ODD_IN_NY = {"wv", "vw", "uv", "vu"}
+_CHUNK = 256  # rows of m per batch of symbol evaluation
+
+
+def _check_blocks(blocks) -> tuple[str, ...]:
+    blocks = tuple(blocks)
+    bad = [b for b in blocks if b not in BLOCKS]
+    if bad or not blocks:
+        raise ValueError(f"blocks must be among {sorted(BLOCKS)}, got {blocks!r}")
+    return blocks
+
+
+def mode_symbols(grid: Grid, layer: Layer, speed: float, blocks=("ww",)) -> dict:
+    """Fourier weights ``g_PQ(m, n)`` for ``0 <= m <= N_tx``, ``0 <= n <= N_ty``.
+
+    ``g = sinc_x sinc_y C_PQ / (L_x L_y)`` (m/N), complex, shape ``(N_tx + 1, N_ty + 1)``.
+    ``speed`` is ``V`` (m/s).
+    """
+    blocks = _check_blocks(blocks)
+    g = grid
+    m = np.arange(g.truncation_x + 1)
+    n = np.arange(g.truncation_y + 1)
+    nu_x = 2 * np.pi * m / g.period_x
+    nu_y = 2 * np.pi * n / g.period_y
+    G = np.asarray(layer.material.modulus(-nu_x * speed), dtype=complex)
+    weight = np.outer(np.sinc(m * g.spacing_x / g.period_x), np.sinc(n * g.spacing_y / g.period_y))
+    weight /= g.period_x * g.period_y
+    rho_V2 = layer.density * speed**2
+    out = {b: np.empty((m.size, n.size), dtype=complex) for b in blocks}
+
+    def work(start: int) -> None:
+        s = slice(start, min(start + _CHUNK, m.size))
+        args = (nu_x[s, None], nu_y[None, :], G[s, None], rho_V2, layer.thickness)
+        if blocks == ("ww",):
+            out["ww"][s] = normal_compliance(*args) * weight[s]
+            return
+        C = surface_compliance(*args)
+        for b in blocks:
+            out[b][s] = C[..., BLOCKS[b][0], BLOCKS[b][1]] * weight[s]
+
+    starts = range(0, m.size, _CHUNK)
+    with ThreadPoolExecutor(max_workers=min(2, os.cpu_count() or 1)) as pool:
+        list(pool.map(work, starts))
+    return out
+
+
+def _chirp_sum(c: np.ndarray, ratio: float, j0: int, count: int) -> np.ndarray:
+    """``sum_n c[..., n] exp(2 pi i ratio n j)`` for ``j = j0 .. j0 + count - 1``.
+
+    Bluestein's identity ``n j = (n^2 + j^2 - (j - n)^2) / 2`` turns the sum into a
+    convolution done by FFT; phases are reduced modulo one turn before use.
+    """
+    N = c.shape[-1]
+    n = np.arange(N, dtype=float)
+    t = np.arange(count, dtype=float)
+    lag = np.arange(-(N - 1), count, dtype=float)
+
+    def turn(x):
+        return np.exp(2j * np.pi * np.mod(ratio * x, 1.0))
+
+    size = sfft.next_fast_len(N + count - 1)
+    a = c * turn(n * j0 + n * n / 2)
+    b = np.zeros(size, dtype=complex)
+    chirp = turn(-lag * lag / 2)
+    b[:count] = chirp[N - 1 :]
+    b[size - (N - 1) :] = chirp[: N - 1]
+    conv = sfft.ifft(sfft.fft(a, size, axis=-1) * sfft.fft(b), axis=-1, workers=-1)
+    return conv[..., :count] * turn(t * t / 2)
+
+
+def kernels_from_symbols(grid: Grid, symbols: dict) -> dict:
+    """Kernel tables (m/N) from quarter-plane symbols (see :func:`mode_symbols`)."""
+    g = grid
+    Kx, Ky = g.nodes_x, g.nodes_y
+    rx, ry = g.spacing_x / g.period_x, g.spacing_y / g.period_y
+    out = {}
+    for b, sym in symbols.items():
+        odd = b in _ODD_IN_NY
+        coef = 2 * sym
+        coef[:, 0] = 0 if odd else sym[:, 0]
+        S = _chirp_sum(coef, ry, -(Ky - 1), 2 * Ky - 1)  # (m, dy) over n >= 0
+        # full n-sum from the n >= 0 half: g(m, -n) = +/- g(m, n)
+        h = 0.5 * (S + S[:, ::-1]) if not odd else 0.5 * (S - S[:, ::-1])
+        cm = 2 * h.T
+        cm[:, 0] = h[0]
+        out[b] = _chirp_sum(cm, rx, -(Kx - 1), 2 * Kx - 1).real  # (dy, dx)
+    return out
+
+
+def influence_kernels(grid: Grid, layer: Layer, speed: float, blocks=("ww",)) -> dict:
+    """Kernel tables of the requested blocks, by fast transforms.
+
+    Parameters
+    ----------
+    grid : Grid
+    layer : Layer
+    speed : float
+        Rolling/sliding speed ``V`` (m/s), ``>= 0``.
+    blocks : iterable of str
+        Among ``ww, wu, wv, uw, uu, uv, vw, vu, vv`` (displacement then force direction).
+
+    Returns
+    -------
+    dict of str -> ndarray, shape ``(2 K_y - 1, 2 K_x - 1)``, float (m/N)
+    """
+    if not speed >= 0:
+        raise ValueError(f"speed must be >= 0 m/s, got {speed!r}")
+    return kernels_from_symbols(grid, mode_symbols(grid, layer, speed, blocks))
+
+
+def influence_kernels_direct(grid: Grid, layer: Layer, speed: float, blocks=("ww",)) -> dict:
+    """The paper's direct summation (eqs. 56-62) for unit forces at nodes 1 and ``K_x``.
+
+    Every term ``|m| <= N_tx, |n| <= N_ty`` is added explicitly; the other columns follow
+    by configurational similarity (sec. 8) with the ``y``-parity of each block.
+    Cost ``O(N_T N_t^2)``: a reference for small grids only.
+    """
+    blocks = _check_blocks(blocks)
+    g = grid
+    m = np.arange(-g.truncation_x, g.truncation_x + 1)
+    n = np.arange(-g.truncation_y, g.truncation_y + 1)
+    nu_x, nu_y = 2 * np.pi * m / g.period_x, 2 * np.pi * n / g.period_y
+    G = np.asarray(layer.material.modulus(-nu_x * speed), dtype=complex)
+    C = surface_compliance(nu_x[:, None], nu_y[None, :], G[:, None], layer.density * speed**2, layer.thickness)
+    # eqs. 56-59: Fourier coefficients of a unit force on a patch, without its phase
+    with np.errstate(invalid="ignore", divide="ignore"):
+        fx = np.where(m == 0, g.spacing_x / g.period_x, np.sin(np.pi * m * g.spacing_x / g.period_x) / (np.pi * m))
+        fy = np.where(n == 0, g.spacing_y / g.period_y, np.sin(np.pi * n * g.spacing_y / g.period_y) / (np.pi * n))
+    coef = np.outer(fx, fy) / g.cell_area
+    x, y = g.x, g.y
+    ex = np.exp(1j * np.outer(x, nu_x))  # (K_x, modes)
+    ey = np.exp(1j * np.outer(y, nu_y))
+    out = {}
+    Kx, Ky = g.nodes_x, g.nodes_y
+    for b in blocks:
+        sym = coef * C[..., BLOCKS[b][0], BLOCKS[b][1]]
+        table = np.zeros((2 * Ky - 1, 2 * Kx - 1))
+        for src in (0, Kx - 1):  # nodes 1 and K_x (first row of the grid)
+            phase = sym * np.exp(-1j * np.add.outer(nu_x * x[src], nu_y * y[0]))
+            disp = (ey @ (ex @ phase).T).real  # eq. 62 at every node, (K_y, K_x)
+            dx = np.arange(Kx) - src
+            table[Ky - 1 :, dx + Kx - 1] = disp  # dy >= 0
+        sign = -1.0 if b in _ODD_IN_NY else 1.0
+        table[: Ky - 1] = sign * table[Ky:][::-1]  # dy < 0 by the y-parity of the block
+        out[b] = table
+    return out
