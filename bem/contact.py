@@ -1,0 +1,284 @@
+"""Frictionless normal contact of a rigid indenter on the layer (paper sec. 9, eq. 53).
+
+Unknowns: compressive nodal forces ``F >= 0`` (N) and the indentation ``d`` (m). With
+``u = C F`` the downward surface deflection (m) and ``s`` the indenter profile (m), the
+gap ``h = s - d + u`` satisfies ``h >= 0``, ``F >= 0``, ``F h = 0`` node by node, and
+``sum F = P`` under load control (``d`` given under displacement control).
+
+Solver: the primal-dual active-set method (Hintermueller, Ito and Kunisch 2002), i.e.
+Kalker's active-set contact algorithm: on a trial contact set ``A`` solve the linear
+problem ``C_AA F_A - d 1 = -s_A`` (with ``1^T F_A = P``), then drop nodes in tension and
+add penetrating ones, until the set repeats. It needs no symmetry of ``C`` (steady
+rolling makes it non-symmetric) and ends with the exact complementarity solution of the
+discrete problem. Linear solves are dense LU on small sets and restarted GMRES with the
+FFT operator otherwise, so memory stays ``O(N)``. A set that recurs (a cycle) switches
+to one-node updates; a cycle there raises :class:`ContactNotConverged`.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Callable
+
+import numpy as np
+from scipy.sparse.linalg import LinearOperator, gmres
+
+from .grid import Grid
+from .operator import ComplianceOperator
+
+__all__ = [
+    "ContactError", "ContactNotConverged", "ContactAtEdge", "SolveRecord", "NormalContact",
+    "solve_normal",
+]
+
+
+class ContactError(RuntimeError):
+    """A contact solve that cannot return a valid answer."""
+
+
+class ContactNotConverged(ContactError):
+    """The active set or a linear solve did not converge."""
+
+
+class ContactAtEdge(ContactError):
+    """The contact reaches the border of the candidate region: the region is too small."""
+
+
+@dataclass(frozen=True)
+class SolveRecord:
+    """How a solve went: active-set iterations, contact-node counts per iteration,
+    linear solver (``dense`` or ``gmres``) and its total iterations, and the final
+    complementarity residual ``max(|min(F, h)|)`` relative to the indentation scale."""
+
+    iterations: int
+    active_history: tuple
+    linear_solver: str
+    linear_iterations: int
+    residual: float
+
+
+@dataclass(frozen=True)
+class NormalContact:
+    """Result of a frictionless contact solve; fields are ``(K_y, K_x)`` arrays.
+
+    Attributes
+    ----------
+    grid : Grid
+    force : ndarray
+        Compressive nodal forces ``F`` (N).
+    deflection : ndarray
+        Downward surface displacement ``u = C F`` (m).
+    gap : ndarray
+        ``h = s - d + u`` (m), ``>= 0``.
+    indentation : float
+        ``d`` (m).
+    load : float
+        ``P = sum F`` (N).
+    rolling_resistance : float
+        ``R_r = sum F_i arm_i`` (N), the paper's ``sum F_i x_i / R`` for round indenters.
+    record : SolveRecord
+    """
+
+    grid: Grid
+    force: np.ndarray
+    deflection: np.ndarray
+    gap: np.ndarray
+    indentation: float
+    load: float
+    rolling_resistance: float
+    record: SolveRecord
+
+    @property
+    def pressure(self) -> np.ndarray:
+        """Nodal pressure ``F / (a_x a_y)`` (Pa)."""
+        return self.force / self.grid.cell_area
+
+    @property
+    def contact(self) -> np.ndarray:
+        """Nodes in contact (``F > 0``)."""
+        return self.force > 0
+
+    @property
+    def contact_area(self) -> float:
+        """Area of the contact patches, ``a_x a_y`` per contact node (m^2)."""
+        return float(self.contact.sum()) * self.grid.cell_area
+
+    @property
+    def contact_radius(self) -> float:
+        """Equivalent radius ``sqrt(area / pi)`` (m): the radius of the disc of the same
+        area, which moves smoothly with the load instead of by whole node spacings."""
+        return math.sqrt(self.contact_area / math.pi)
+
+    @property
+    def peak_pressure(self) -> float:
+        """Largest nodal pressure (Pa)."""
+        return float(self.pressure.max())
+
+    @property
+    def centroid_x(self) -> float:
+        """``x`` of the resultant normal force (m); ``> 0`` means shifted to the leading edge."""
+        X, _ = self.grid.coordinates()
+        return float((self.force * X).sum() / self.force.sum())
+
+
+def _edge_nodes(shape: tuple[int, int]) -> np.ndarray:
+    edge = np.zeros(shape, dtype=bool)
+    edge[0, :] = edge[-1, :] = edge[:, 0] = edge[:, -1] = True
+    return edge.ravel()
+
+
+class _LinearSolver:
+    """Solve the load- or displacement-controlled problem on a node subset."""
+
+    def __init__(self, op: ComplianceOperator, dense_limit: int, rtol: float):
+        self.op, self.dense_limit, self.rtol = op, dense_limit, rtol
+        self.iterations = 0
+        self.used_gmres = False
+
+    def __call__(self, idx, s_A, load, indentation, guess):
+        n = idx.size
+        diag = float(self.op.kernel[self.op.grid.nodes_y - 1, self.op.grid.nodes_x - 1])
+        if n <= self.dense_limit:
+            K = self.op.dense(idx)
+            if load is None:
+                return np.linalg.solve(K, indentation - s_A), indentation
+            M = np.zeros((n + 1, n + 1))
+            M[:n, :n] = K
+            M[:n, n] = -1.0
+            M[n, :n] = diag  # scaled so that both rows are in metres
+            x = np.linalg.solve(M, np.concatenate([-s_A, [diag * load]]))
+            return x[:n], x[n]
+        self.used_gmres = True
+        shape, size = self.op.grid.shape, self.op.grid.nodes_x * self.op.grid.nodes_y
+        full = np.zeros(size)
+        bordered = load is not None
+
+        def matvec(v):
+            full[:] = 0.0
+            full[idx] = v[:n]
+            out = self.op.apply(full.reshape(shape)).ravel()[idx]
+            if not bordered:
+                return out
+            return np.concatenate([out - v[n], [diag * v[:n].sum()]])
+
+        dim = n + 1 if bordered else n
+        A = LinearOperator((dim, dim), matvec=matvec, dtype=float)
+        b = np.concatenate([-s_A, [diag * load]]) if bordered else indentation - s_A
+        x0 = guess if bordered else guess[:n]
+        count = [0]
+        x, info = gmres(A, b, x0=x0, rtol=self.rtol, atol=0.0, restart=100, maxiter=100,
+                        callback=lambda _: count.__setitem__(0, count[0] + 1), callback_type="pr_norm")
+        self.iterations += count[0]
+        if info != 0:
+            raise ContactNotConverged(
+                f"GMRES did not reach rtol={self.rtol} on {n} contact nodes in {count[0]} iterations; "
+                "refine less, or raise dense_limit if memory allows"
+            )
+        return (x[:n], x[n]) if bordered else (x, indentation)
+
+
+def solve_normal(
+    operator: ComplianceOperator,
+    profile: np.ndarray,
+    *,
+    load: float | None = None,
+    indentation: float | None = None,
+    arm: np.ndarray | None = None,
+    max_iter: int = 100,
+    dense_limit: int = 3000,
+    rtol: float = 1e-11,
+    progress: Callable[[str], None] | None = None,
+) -> NormalContact:
+    """Frictionless contact under load control (``load``, N) or displacement control
+    (``indentation``, m); give exactly one.
+
+    Parameters
+    ----------
+    operator : ComplianceOperator
+        The ``C_WW`` block (m/N).
+    profile : ndarray, shape ``(K_y, K_x)``
+        Indenter profile ``s`` (m) above its lowest point, ``inf`` where it cannot touch.
+    arm : ndarray, optional
+        Rolling arm (-) so that ``R_r = sum F arm`` (see :mod:`bem.indenters`).
+    max_iter : int
+        Active-set iterations allowed.
+    dense_limit : int
+        Largest contact set solved by dense LU; larger ones use GMRES.
+    rtol : float
+        GMRES relative tolerance.
+    progress : callable, optional
+        Called with one line per active-set iteration.
+
+    Raises
+    ------
+    ContactNotConverged, ContactAtEdge, ValueError
+    """
+    if (load is None) == (indentation is None):
+        raise ValueError("give exactly one of load (N) and indentation (m)")
+    if load is not None and not (math.isfinite(load) and load > 0):
+        raise ValueError(f"load must be > 0 N, got {load!r}")
+    if indentation is not None and not (math.isfinite(indentation) and indentation > 0):
+        raise ValueError(f"indentation must be > 0 m, got {indentation!r}")
+    grid = operator.grid
+    s = np.asarray(profile, dtype=float).reshape(-1)
+    if s.size != grid.nodes_x * grid.nodes_y:
+        raise ValueError(f"profile must have the grid's shape {grid.shape}, got {np.shape(profile)}")
+    reachable = np.isfinite(s)
+    if not reachable.any():
+        raise ValueError("the indenter reaches no node of the grid")
+
+    solve = _LinearSolver(operator, dense_limit, rtol)
+    active = reachable.copy()
+    seen: set[bytes] = set()
+    careful = False
+    history = []
+    guess = np.zeros(active.sum() + 1)
+    for it in range(1, max_iter + 1):
+        idx = np.flatnonzero(active)
+        fA, d = solve(idx, s[idx], load, indentation, guess)
+        F = np.zeros_like(s)
+        F[idx] = fA
+        u = operator.apply(F.reshape(grid.shape)).ravel()
+        h = np.where(reachable, s - d + u, np.inf)
+        scale = max(abs(d), 1e-300)
+        drop = active & (F <= 0)
+        add = ~active & (h < -1e-12 * scale)
+        history.append(int(active.sum()))
+        if progress:
+            progress(f"active set {it}: {idx.size} nodes, d = {d:.6e} m, -{int(drop.sum())} +{int(add.sum())}")
+        if not drop.any() and not add.any():
+            break
+        if careful:  # one node at a time, the worst first
+            new = active.copy()
+            if drop.any():
+                new[np.argmin(np.where(drop, F, np.inf))] = False
+            else:
+                new[np.argmin(np.where(add, h, np.inf))] = True
+        else:
+            new = (active & ~drop) | add
+        key = np.packbits(new).tobytes()
+        if key in seen:
+            if careful:
+                raise ContactNotConverged(f"the active set cycles after {it} iterations even with one-node updates")
+            careful = True
+        seen.add(key)
+        active = new
+        if not active.any():
+            raise ContactNotConverged("the active set emptied: check the load sign and the indenter profile")
+        guess = np.concatenate([F[active], [d]])
+    else:
+        raise ContactNotConverged(f"no converged contact set in {max_iter} active-set iterations")
+
+    contact = F > 0
+    if (contact & _edge_nodes(grid.shape)).any():
+        raise ContactAtEdge(
+            "the contact reaches the edge of the candidate region "
+            f"(|x| <= {grid.x[-1]:.4g} m, |y| <= {grid.y[-1]:.4g} m): increase grid.half_width"
+        )
+    # |h| on the contact set and penetration elsewhere, relative to the indentation
+    resid = max(np.abs(h[active]).max(initial=0.0), (-h[reachable & ~active]).max(initial=0.0)) / scale
+    rr = float((F * np.asarray(arm).ravel()).sum()) if arm is not None else math.nan
+    record = SolveRecord(it, tuple(history), "gmres" if solve.used_gmres else "dense", solve.iterations, resid)
+    shape = grid.shape
+    return NormalContact(grid, F.reshape(shape), u.reshape(shape), h.reshape(shape), float(d), float(F.sum()), rr, record)
