@@ -1,0 +1,98 @@
+"""``bem solve CASE.toml``: one contact problem from a case file."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from pathlib import Path
+
+import numpy as np
+
+from .case import problem_from_config, read_case
+from .contact import ContactError
+from .problem import solve_frictionless
+
+
+def _summary(problem, result, timings) -> dict:
+    g = problem.grid
+    r = result.record
+    return {
+        "rolling_resistance": result.rolling_resistance,
+        "indentation": result.indentation,
+        "contact_radius": result.contact_radius,
+        "load": result.load,
+        "peak_pressure": result.peak_pressure,
+        "contact_area": result.contact_area,
+        "pressure_centroid_x": result.centroid_x,
+        "speed": problem.loading.speed,
+        "grid": {
+            "nodes": [g.nodes_x, g.nodes_y],
+            "spacing": [g.spacing_x, g.spacing_y],
+            "period": [g.period_x, g.period_y],
+            "truncation": [g.truncation_x, g.truncation_y],
+        },
+        "solver": {
+            "active_set_iterations": r.iterations,
+            "active_history": list(r.active_history),
+            "linear_solver": r.linear_solver,
+            "linear_iterations": r.linear_iterations,
+            "complementarity_residual": r.residual,
+        },
+        "timings_s": timings,
+    }
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(prog="bem", description=__doc__)
+    sub = parser.add_subparsers(dest="command", required=True)
+    s = sub.add_parser("solve", help="solve a case file")
+    s.add_argument("case", type=Path)
+    s.add_argument("--set", action="append", default=[], metavar="SECTION.KEY=VALUE",
+                   help="override an entry of the case file (value parsed as TOML)")
+    s.add_argument("--json", action="store_true", help="print one JSON object on stdout")
+    s.add_argument("--plot", type=Path, help="write the pressure map and y = 0 profile (PNG)")
+    s.add_argument("--fields", type=Path, help="save nodal coordinates and fields (NPZ)")
+    s.add_argument("--quiet", action="store_true", help="no progress lines on stderr")
+    args = parser.parse_args(argv)
+
+    def progress(line: str) -> None:
+        if not args.quiet:
+            print(line, file=sys.stderr, flush=True)
+
+    try:
+        config, base = read_case(args.case, args.set)
+        problem, auto = problem_from_config(config, base)
+        result, timings = solve_frictionless(problem, progress=progress, grow=auto)
+    except FileNotFoundError as exc:
+        print(f"bem: {exc}", file=sys.stderr)
+        return 2
+    except (ValueError, TypeError, ContactError) as exc:
+        print(f"bem: {type(exc).__name__}: {exc}", file=sys.stderr)
+        return 2
+    summary = _summary(problem, result, timings)
+    if args.fields:
+        args.fields.parent.mkdir(parents=True, exist_ok=True)
+        np.savez_compressed(
+            args.fields, x=result.grid.x, y=result.grid.y, force=result.force,
+            pressure=result.pressure, deflection=result.deflection, gap=result.gap,
+            contact=result.contact, summary=json.dumps(summary),
+        )
+    if args.plot:
+        from .plots import plot_normal_contact
+
+        plot_normal_contact(result, args.plot)
+        progress(f"wrote {args.plot}")
+    if args.json:
+        print(json.dumps(summary, indent=2))
+    else:
+        print(f"rolling resistance  {result.rolling_resistance:.6g} N")
+        print(f"indentation         {result.indentation:.6g} m")
+        print(f"contact radius      {result.contact_radius:.6g} m (equivalent, sqrt(area/pi))")
+        print(f"load                {result.load:.6g} N")
+        print(f"peak pressure       {result.peak_pressure:.6g} Pa")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

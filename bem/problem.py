@@ -1,0 +1,118 @@
+"""A contact problem as a composition: layer, indenter, grid and loading; and its solve."""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, replace
+from typing import Callable
+
+from .contact import ContactAtEdge, NormalContact, solve_normal
+from .grid import Grid
+from .layer import Layer
+from .operator import ComplianceOperator
+from .spectral import influence_kernels
+
+__all__ = ["Loading", "Problem", "solve_frictionless", "auto_half_width"]
+
+
+@dataclass(frozen=True)
+class Loading:
+    """Steady motion and normal loading.
+
+    Parameters
+    ----------
+    speed : float
+        ``V`` (m/s) of the indenter in ``+x``, ``>= 0`` (0: stationary contact).
+    load : float, optional
+        ``P`` (N), load control.
+    indentation : float, optional
+        ``d`` (m), displacement control. Exactly one of ``load`` and ``indentation``.
+    """
+
+    speed: float = 0.0
+    load: float | None = None
+    indentation: float | None = None
+
+    def __post_init__(self) -> None:
+        if not (math.isfinite(self.speed) and self.speed >= 0):
+            raise ValueError(f"speed must be >= 0 m/s, got {self.speed!r}")
+        if (self.load is None) == (self.indentation is None):
+            raise ValueError("loading needs exactly one of load (N) and indentation (m)")
+        for name, unit in (("load", "N"), ("indentation", "m")):
+            v = getattr(self, name)
+            if v is not None and not (math.isfinite(v) and v > 0):
+                raise ValueError(f"{name} must be > 0 {unit}, got {v!r}")
+
+
+@dataclass(frozen=True)
+class Problem:
+    """Rigid ``indenter`` on ``layer`` under ``loading``, discretized by ``grid``."""
+
+    layer: Layer
+    indenter: object
+    grid: Grid
+    loading: Loading
+
+
+def auto_half_width(layer: Layer, indenter, loading: Loading, spacing: float) -> float:
+    """Half-width (m) of a candidate region that should hold the contact.
+
+    An upper estimate of the contact radius: Hertz on an incompressible half-space with
+    the relaxed modulus ``G(0)`` (a bonded layer is stiffer, the moving contact too) under
+    load control, or the radius where the profile reaches the indentation under
+    displacement control; times 1.25, plus two spacings.
+    """
+    R = getattr(indenter, "radius", None)
+    if R is None:
+        raise ValueError("give grid.half_width for an indenter without a radius")
+    if loading.load is not None:
+        G0 = abs(complex(layer.material.modulus(0.0)))
+        a = (3 * loading.load * R / (16 * G0)) ** (1 / 3)
+    else:
+        a = math.sqrt(2 * R * loading.indentation)
+    return min(1.25 * a + 2 * spacing, 0.9 * R)
+
+
+def solve_frictionless(
+    problem: Problem,
+    progress: Callable[[str], None] | None = None,
+    grow: bool = False,
+) -> tuple[NormalContact, dict]:
+    """Frictionless stationary or steady rolling contact.
+
+    Returns the contact result and the timings (s) of the kernel and of the solve. With
+    ``grow=True`` (an automatically sized region) a contact that reaches the edge of the
+    region widens it by half and solves again; otherwise that raises
+    :class:`bem.contact.ContactAtEdge`.
+    """
+    p = problem
+    while True:
+        t0 = time.perf_counter()
+        kernel = influence_kernels(p.grid, p.layer, p.loading.speed, blocks=("ww",))["ww"]
+        op = ComplianceOperator(p.grid, kernel)
+        t1 = time.perf_counter()
+        if progress:
+            progress(f"compliance: {p.grid.nodes_x} x {p.grid.nodes_y} nodes, "
+                     f"Nt = {p.grid.truncation_x} x {p.grid.truncation_y}, {t1 - t0:.2f} s")
+        X, Y = p.grid.coordinates()
+        try:
+            res = solve_normal(
+                op, p.indenter.profile(X, Y), load=p.loading.load,
+                indentation=p.loading.indentation, arm=p.indenter.rolling_arm(X, Y),
+                progress=progress,
+            )
+        except ContactAtEdge:
+            if not grow:
+                raise
+            g = p.grid
+            bigger = Grid.centred(
+                (g.spacing_x, g.spacing_y), (g.period_x, g.period_y),
+                (g.truncation_x, g.truncation_y), (1.5 * g.x[-1], 1.5 * g.y[-1]),
+            )
+            if progress:
+                progress(f"contact reached the region's edge: widening to |x| <= {bigger.x[-1]:.4g} m")
+            p = replace(p, grid=bigger)
+            continue
+        t2 = time.perf_counter()
+        return res, {"kernel_s": t1 - t0, "solve_s": t2 - t1}

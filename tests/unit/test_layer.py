@@ -1,0 +1,96 @@
+"""The layer's Fourier-space compliance: closed form against the matrix exponential,
+exact limits, and the identities of linear viscoelasticity."""
+
+import numpy as np
+import pytest
+
+from bem.layer import normal_compliance, surface_compliance, surface_compliance_expm
+
+H = 5e-3
+KH = [0.0, 1e-8, 1e-4, 1e-2, 0.3, 0.99, 1.0, 1.01, 2.0, 2.01, 5.0, 10.0, 30.0, 49.0, 51.0, 1e2, 1e3, 1e4, 1e5]
+# (G*, rho V^2): static elastic, viscoelastic, viscoelastic with inertia, transonic and
+# supersonic speeds relative to the shear wave (rho V^2 / G = 0.7, 0.999, 1.5)
+MATERIALS = [(3e6, 0.0), (3e6 + 1e6j, 0.0), (3e6 + 1e6j, 2.5), (3e6, 2.1e6), (3e6, 2.997e6), (3e6 + 5e5j, 4.5e6)]
+ANGLES = [0.0, 0.7, np.pi / 2, 2.5]
+
+
+@pytest.mark.parametrize("G, rho_V2", MATERIALS)
+def test_closed_form_matches_matrix_exponential(G, rho_V2):
+    """All nine entries, kH from 0 to 1e5: 1e-10 relative to the largest entry (the
+    reference itself carries ~1e-13; entries that vanish like (kH)^2 next to H/G cannot
+    be resolved relative to themselves by the exponential route)."""
+    worst = 0.0
+    for kh in KH:
+        for ang in ANGLES:
+            k = kh / H
+            nx, ny = k * np.cos(ang), k * np.sin(ang)
+            C = surface_compliance(nx, ny, G, rho_V2, H)
+            R = surface_compliance_expm(nx, ny, G, rho_V2, H)
+            worst = max(worst, np.abs(C - R).max() / np.abs(R).max())
+    assert worst < 1e-10
+
+
+def test_k_zero_is_exact():
+    """Uniform traction: no vertical motion (bonded incompressible), simple shear H/G."""
+    G = 3e6 + 2e5j
+    C = surface_compliance(0.0, 0.0, G, 7.0, H)
+    np.testing.assert_array_equal(C, np.diag([0, H / G, H / G]))
+
+
+def test_static_normal_compliance_independent_formula():
+    """V = 0: w/sigma_z = (sinh 2kH - 2kH) / (2 G k (cosh 2kH + 2 (kH)^2 + 1)), the bonded
+    incompressible layer of Jaffar's L(omega) (paper eq. 68, kappa = 1), to 1e-13."""
+    G = 3e6
+    kh = np.logspace(-1, np.log10(300), 60)
+    k = kh / H
+    ref = (np.sinh(2 * kh) - 2 * kh) / (2 * G * k * (np.cosh(2 * kh) + 2 * kh**2 + 1))
+    got = normal_compliance(k, 0.0, G, 0.0, H)
+    np.testing.assert_allclose(got.real, ref, rtol=1e-13)
+    assert np.all(got.imag == 0)
+
+
+def test_thin_and_half_space_limits():
+    G = 3e6
+    for kh in (1e-3, 1e-4):  # thin: k^2 H^3 / (3 G) (1 - 9/5 (kH)^2 + ...), by series
+        k = kh / H
+        got = normal_compliance(k, 0.0, G, 0.0, H).real
+        np.testing.assert_allclose(got, k**2 * H**3 / (3 * G) * (1 - 1.8 * kh**2), rtol=1e-4 * kh**2)
+    k = 1e3 / H  # half-space: normal 1/(2Gk), in-plane 1/(2Gk) along and 1/(Gk) across k
+    C = surface_compliance(k, 0.0, G, 0.0, H)
+    np.testing.assert_allclose(np.diag(C).real, [1 / (2 * G * k), 1 / (2 * G * k), 1 / (G * k)], rtol=1e-14)
+
+
+@pytest.mark.parametrize("G", [3e6, 3e6 + 1.2e6j])
+def test_reciprocity_at_rest(G):
+    """V = 0 (elastic or at one frequency): C(nu)^T = C(-nu) (Betti's theorem)."""
+    rng = np.random.default_rng(0)
+    for _ in range(20):
+        nx, ny = rng.normal(size=2) * 10 ** rng.uniform(0, 5) / H
+        C = surface_compliance(nx, ny, G, 0.0, H)
+        Cm = surface_compliance(-nx, -ny, G, 0.0, H)
+        np.testing.assert_allclose(C.T, Cm, rtol=1e-12, atol=1e-12 * np.abs(C).max())
+
+
+def test_reality_in_the_moving_frame():
+    """Mode -m sees the conjugate modulus: C(-nu, conj G) = conj C(nu, G), any speed."""
+    rng = np.random.default_rng(1)
+    for _ in range(20):
+        nx, ny = rng.normal(size=2) * 10 ** rng.uniform(0, 4) / H
+        G = 3e6 + 1e6j * rng.uniform()
+        rv2 = rng.uniform(0, 4e6)
+        np.testing.assert_allclose(
+            surface_compliance(-nx, -ny, np.conj(G), rv2, H),
+            np.conj(surface_compliance(nx, ny, G, rv2, H)),
+            rtol=1e-12, atol=1e-14 * H / 3e6,
+        )
+
+
+def test_viscous_layer_dissipates():
+    """At rest and one frequency omega > 0 (G'' > 0) the layer absorbs power for every
+    traction: the Hermitian form -Im(t^H C t) is >= 0."""
+    rng = np.random.default_rng(2)
+    for _ in range(20):
+        nx, ny = rng.normal(size=2) * 10 ** rng.uniform(0, 4) / H
+        C = surface_compliance(nx, ny, 3e6 + 1e6j, 0.0, H)
+        anti = (C - C.conj().T) / 2j
+        assert np.linalg.eigvalsh(anti).max() <= 1e-12 * np.abs(C).max()

@@ -1,0 +1,73 @@
+"""Influence kernels: fast transforms against the paper's direct summation, symmetry of
+the stationary elastic operator, and the compliance operator's products."""
+
+import numpy as np
+import pytest
+
+from bem.grid import Grid
+from bem.layer import Layer
+from bem.materials import Elastic, ThreeParameterSolid
+from bem.operator import ComplianceOperator
+from bem.spectral import BLOCKS, _chirp_sum, influence_kernels, influence_kernels_direct
+
+VISCO = Layer(5e-3, ThreeParameterSolid(G0=3.0e6, tau=0.25, f=1.0), density=1000.0)
+ELASTIC = Layer(5e-3, Elastic(3.0e6))
+# spacings that do not divide the periods, different in x and y, odd and even node counts
+GRID = Grid(0.7e-3, 0.9e-3, 0.02, 0.025, 40, 30, 7, 6)
+
+
+def test_chirp_sum_matches_direct_sum():
+    rng = np.random.default_rng(0)
+    c = rng.normal(size=(3, 57)) + 1j * rng.normal(size=(3, 57))
+    ratio, j0, count = 0.0123456789, -11, 23
+    n = np.arange(57)
+    j = np.arange(j0, j0 + count)
+    ref = c @ np.exp(2j * np.pi * ratio * np.outer(n, j))
+    np.testing.assert_allclose(_chirp_sum(c, ratio, j0, count), ref, rtol=0, atol=1e-12 * np.abs(ref).max())
+
+
+@pytest.mark.parametrize("speed", [0.0, 0.05, 40.0])
+def test_fast_kernels_match_direct_summation(speed):
+    """Every block, steady rolling with inertia included: 1e-10 relative to the block."""
+    fast = influence_kernels(GRID, VISCO, speed, blocks=BLOCKS)
+    direct = influence_kernels_direct(GRID, VISCO, speed, blocks=BLOCKS)
+    for b in BLOCKS:
+        scale = np.abs(direct[b]).max()
+        assert np.abs(fast[b] - direct[b]).max() <= 1e-10 * scale, b
+
+
+def test_stationary_elastic_operator_is_symmetric():
+    """Reciprocity: C_WW(M, N) = C_WW(N, M) at rest; and the normal-tangential blocks
+    satisfy C_WU = C_UW^T."""
+    k = influence_kernels(GRID, ELASTIC, 0.0, blocks=("ww", "wu", "uw", "uu"))
+    ww = ComplianceOperator(GRID, k["ww"]).dense()
+    np.testing.assert_allclose(ww, ww.T, rtol=0, atol=1e-13 * np.abs(ww).max())
+    wu = ComplianceOperator(GRID, k["wu"]).dense()
+    uw = ComplianceOperator(GRID, k["uw"]).dense()
+    np.testing.assert_allclose(wu, uw.T, rtol=0, atol=1e-13 * np.abs(ww).max())
+
+
+def test_rolling_operator_is_not_symmetric():
+    ww = ComplianceOperator(GRID, influence_kernels(GRID, VISCO, 0.05)["ww"]).dense()
+    assert np.abs(ww - ww.T).max() > 1e-3 * np.abs(ww).max()
+
+
+def test_operator_products_match_dense_matrix():
+    op = ComplianceOperator(GRID, influence_kernels(GRID, VISCO, 0.05)["ww"])
+    D = op.dense()
+    f = np.random.default_rng(3).normal(size=GRID.shape)
+    np.testing.assert_allclose(op.apply(f).ravel(), D @ f.ravel(), rtol=0, atol=1e-13 * np.abs(D).max())
+    np.testing.assert_allclose(op.apply_transpose(f).ravel(), D.T @ f.ravel(), rtol=0, atol=1e-13 * np.abs(D).max())
+    idx = np.array([3, 5, 17, 40])
+    np.testing.assert_array_equal(op.dense(idx), D[np.ix_(idx, idx)])
+
+
+def test_grid_validation_messages():
+    with pytest.raises(ValueError, match="spacing_x must be > 0 m, got -0.001"):
+        Grid(-1e-3, 1e-3, 0.1, 0.1, 100, 100, 5, 5)
+    with pytest.raises(ValueError, match="truncation_x must be >= period_x/\\(2 spacing_x\\) = 667"):
+        Grid(0.15e-3, 0.15e-3, 0.2, 0.2, 500, 1000, 5, 5)
+    with pytest.raises(ValueError, match="must be < period_y"):
+        Grid(1e-3, 1e-3, 0.1, 0.01, 100, 100, 5, 11)
+    g = Grid.centred((0.25e-3, 0.25e-3), (0.2, 0.2), (2000, 2000), (5e-3, 5e-3))
+    assert g.shape == (41, 41) and g.x[20] == 0.0 and np.isclose(g.x[-1], 5e-3)
