@@ -39,7 +39,10 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.linalg import expm
 
-__all__ = ["Layer", "system_matrix", "surface_compliance", "surface_compliance_expm", "normal_compliance"]
+__all__ = [
+    "Layer", "system_matrix", "surface_compliance", "surface_compliance_expm", "normal_compliance",
+    "normal_compliance_outer",
+]
 
 
 @dataclass(frozen=True)
@@ -382,6 +385,34 @@ def surface_compliance(nu_x, nu_y, G, rho_V2, H):
     C[..., 2, 2] = sy * sy * c_LL + cx * cx * c_TT
     C[..., 1, 2] = C[..., 2, 1] = cx * sy * (c_LL - c_TT)
     return C
+
+
+_SERIES_EPS = 1e-6
+
+
+def normal_compliance_outer(nu_x, nu_y, G, rho_V2, H):
+    """:func:`normal_compliance` on the outer grid ``nu_x[:, None], nu_y[None, :]`` with
+    one modulus ``G[i]`` per ``nu_x[i]``, fast for the many half-space modes.
+
+    Where ``kH > 50`` and ``eps = rho V^2 nu_x^2 / (G k^2)`` is below 1e-6, the half-space
+    value ``k (k + q) / (G R)`` is replaced by its expansion
+    ``(1 + 3/4 eps) / (2 G k) + O(eps^2)`` (relative error ~1e-12), which needs complex
+    arithmetic only along ``nu_x``; every other mode takes the exact path.
+    """
+    nu_x, nu_y, G = (np.asarray(a) for a in (nu_x, nu_y, G))
+    k = np.hypot(nu_x[:, None], nu_y[None, :])
+    b = 0.75 * rho_V2 * nu_x**2 / G
+    with np.errstate(divide="ignore", invalid="ignore"):  # k = 0 is redone exactly below
+        inv_k = 1.0 / k
+        out = (inv_k * inv_k) * b[:, None]
+        out += 1.0
+        out *= inv_k
+        out *= (0.5 / G)[:, None]
+        exact = (k * H <= _HALFSPACE_KH) | (np.abs(b)[:, None] * inv_k**2 > 0.75 * _SERIES_EPS)
+    if exact.any():
+        i, j = np.nonzero(exact)
+        out[i, j] = normal_compliance(nu_x[i], nu_y[j], G[i], rho_V2, H)
+    return out
 
 
 def normal_compliance(nu_x, nu_y, G, rho_V2, H):

@@ -29,7 +29,7 @@ import numpy as np
 import scipy.fft as sfft
 
 from .grid import Grid
-from .layer import Layer, normal_compliance, surface_compliance
+from .layer import Layer, normal_compliance_outer, surface_compliance
 
 __all__ = ["BLOCKS", "influence_kernels", "influence_kernels_direct", "mode_symbols"]
 
@@ -67,11 +67,10 @@ def mode_symbols(grid: Grid, layer: Layer, speed: float, blocks=("ww",)) -> dict
 
     def work(start: int) -> None:
         s = slice(start, min(start + _CHUNK, m.size))
-        args = (nu_x[s, None], nu_y[None, :], G[s, None], rho_V2, layer.thickness)
         if blocks == ("ww",):
-            out["ww"][s] = normal_compliance(*args) * weight[s]
+            out["ww"][s] = normal_compliance_outer(nu_x[s], nu_y, G[s], rho_V2, layer.thickness) * weight[s]
             return
-        C = surface_compliance(*args)
+        C = surface_compliance(nu_x[s, None], nu_y[None, :], G[s, None], rho_V2, layer.thickness)
         for b in blocks:
             out[b][s] = C[..., BLOCKS[b][0], BLOCKS[b][1]] * weight[s]
 
@@ -105,6 +104,40 @@ def _chirp_sum(c: np.ndarray, ratio: float, j0: int, count: int) -> np.ndarray:
     return conv[..., :count] * turn(t * t / 2)
 
 
+_MATMUL_NODES = 128  # up to this many nodes a side, trigonometric matrix products win
+
+
+def _turns(ratio: float, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Phase ``2 pi ratio a b`` reduced modulo a turn (``a b`` exact integers)."""
+    return 2 * np.pi * np.mod(ratio * np.outer(a, b).astype(float), 1.0)
+
+
+def _kernel_by_products(grid: Grid, sym: np.ndarray, odd: bool) -> np.ndarray:
+    """The double sum by real matrix products: cost ``O(N_t^2 K)``, best for small grids."""
+    g = grid
+    Kx, Ky = g.nodes_x, g.nodes_y
+    n = np.arange(sym.shape[1])
+    ph = _turns(g.spacing_y / g.period_y, n, np.arange(Ky))  # (n, dy >= 0)
+    re, im = np.ascontiguousarray(sym.real), np.ascontiguousarray(sym.imag)
+    if odd:  # sum_n g (e^{i..} - e^{-i..}) = 2 i sum_{n>0} g sin
+        T = 2 * np.sin(ph)
+        h_re, h_im = -(im @ T), re @ T
+        h_re = np.concatenate([-h_re[:, :0:-1], h_re], axis=1)
+        h_im = np.concatenate([-h_im[:, :0:-1], h_im], axis=1)
+    else:
+        T = 2 * np.cos(ph)
+        T[0] = 1.0
+        h_re, h_im = re @ T, im @ T
+        h_re = np.concatenate([h_re[:, :0:-1], h_re], axis=1)
+        h_im = np.concatenate([h_im[:, :0:-1], h_im], axis=1)
+    m = np.arange(sym.shape[0])
+    phx = _turns(g.spacing_x / g.period_x, np.arange(-(Kx - 1), Kx), m)  # (dx, m)
+    wm = np.full(m.size, 2.0)
+    wm[0] = 1.0
+    K = (np.cos(phx) * wm) @ h_re - (np.sin(phx) * wm) @ h_im  # Re sum_m w h e^{i..}
+    return K.T
+
+
 def kernels_from_symbols(grid: Grid, symbols: dict) -> dict:
     """Kernel tables (m/N) from quarter-plane symbols (see :func:`mode_symbols`)."""
     g = grid
@@ -112,6 +145,9 @@ def kernels_from_symbols(grid: Grid, symbols: dict) -> dict:
     rx, ry = g.spacing_x / g.period_x, g.spacing_y / g.period_y
     out = {}
     for b, sym in symbols.items():
+        if max(Kx, Ky) <= _MATMUL_NODES:
+            out[b] = _kernel_by_products(g, sym, b in _ODD_IN_NY)
+            continue
         odd = b in _ODD_IN_NY
         coef = 2 * sym
         coef[:, 0] = 0 if odd else sym[:, 0]

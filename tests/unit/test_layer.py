@@ -4,7 +4,7 @@ exact limits, and the identities of linear viscoelasticity."""
 import numpy as np
 import pytest
 
-from bem.layer import normal_compliance, surface_compliance, surface_compliance_expm
+from bem.layer import normal_compliance, normal_compliance_outer, surface_compliance, surface_compliance_expm
 
 H = 5e-3
 KH = [0.0, 1e-8, 1e-4, 1e-2, 0.3, 0.99, 1.0, 1.01, 2.0, 2.01, 5.0, 10.0, 30.0, 49.0, 51.0, 1e2, 1e3, 1e4, 1e5]
@@ -94,3 +94,17 @@ def test_viscous_layer_dissipates():
         C = surface_compliance(nx, ny, 3e6 + 1e6j, 0.0, H)
         anti = (C - C.conj().T) / 2j
         assert np.linalg.eigvalsh(anti).max() <= 1e-12 * np.abs(C).max()
+
+
+@pytest.mark.parametrize("rho_V2", [0.0, 2.5, 3e3, 3e6 * 0.7])
+def test_outer_grid_fast_path_matches_exact(rho_V2):
+    """The half-space series used for the many high modes (eps <= 1e-6) against the exact
+    closed form, through the switch to the exact path: 1e-11 relative."""
+    nu_x = 2 * np.pi * np.arange(0, 3001, 7) / 0.2
+    nu_y = 2 * np.pi * np.arange(0, 3001, 5) / 0.2
+    G = 3e6 + 1e6j / (1 + (nu_x * 0.01) ** 2)
+    fast = normal_compliance_outer(nu_x, nu_y, G, rho_V2, H)
+    exact = normal_compliance(nu_x[:, None], nu_y[None, :], G[:, None], rho_V2, H)
+    assert np.abs(fast - exact).max() <= 1e-11 * np.abs(exact).max()
+    nz = np.abs(exact) > 0
+    assert (np.abs(fast - exact)[nz] / np.abs(exact[nz])).max() < 1e-11

@@ -1,0 +1,25 @@
+"""Spectral boundary-element method for contact on a bonded incompressible viscoelastic
+layer in a moving frame (Zehil and Gavin 2013).
+
+Layer compliance in Fourier space (:mod:`bem.layer`), influence kernels as the paper's
+truncated Fourier sums (:mod:`bem.spectral`), the nodal compliance operator
+(:mod:`bem.operator`), indenters, and the frictionless contact solver with its rolling
+resistance (:mod:`bem.contact`, :mod:`bem.problem`). SI units throughout.
+"""
+
+from .contact import ContactAtEdge, ContactError, ContactNotConverged, NormalContact, solve_normal
+from .grid import Grid
+from .indenters import Cylinder, HeightMap, Paraboloid, Sphere
+from .layer import Layer, surface_compliance, surface_compliance_expm
+from .materials import Elastic, MasterCurveTable, Prony, ThreeParameterSolid
+from .operator import ComplianceOperator
+from .problem import Loading, Problem, solve_frictionless
+from .spectral import influence_kernels, influence_kernels_direct
+
+__all__ = [
+    "ComplianceOperator", "ContactAtEdge", "ContactError", "ContactNotConverged", "Cylinder",
+    "Elastic", "Grid", "HeightMap", "Layer", "Loading", "MasterCurveTable", "NormalContact",
+    "Paraboloid", "Problem", "Prony", "Sphere", "ThreeParameterSolid", "influence_kernels",
+    "influence_kernels_direct", "solve_frictionless", "solve_normal", "surface_compliance",
+    "surface_compliance_expm",
+]
