@@ -1,0 +1,59 @@
+"""Exactly incompressible finite-element reference for stationary, elastic,
+frictionless indentation of a layer bonded to a rigid base.
+
+Taylor-Hood P2-P1 displacement-pressure elements (scikit-fem) on gmsh meshes
+(read through meshio, named physical groups, refined around the contact), in an
+axisymmetric (r, z) section (the high-accuracy reference) or a quarter cylinder
+in 3D (a check of it). The contact pressure is a P1 Lagrange multiplier on a
+refined candidate zone of the top surface (mortar coupling with u_z: a
+consistent traction, no corner/mid-side oscillation of P2 nodal reactions); the
+contact problem, condensed on that zone, is solved by an active-set method with
+cycle detection (:mod:`.contact`). Load or displacement control. SI units.
+
+Python use::
+
+    from fem_reference import (ContactProblem, Layer, ElasticMaterial, Indenter,
+                               Loading, FemSettings, solve)
+    result = solve(ContactProblem(Layer(5e-3), ElasticMaterial(3.0e6),
+                                  Indenter("sphere", 0.02), Loading(load=100.0)))
+    result.contact_radius, result.indentation, result.peak_pressure
+
+Command line: ``fem-reference solve CASE.toml --json [--set fem.model='"3d"']
+[--plot FILE.png] [--vtu FILE.vtu]``. The case file is the one of ``bem solve``
+(README, "Case files"); fem_reference reads ``[layer] thickness``,
+``[material] model = "elastic"`` with ``shear_modulus``, ``[indenter] shape``
+("sphere" | "paraboloid") and ``radius``, ``[loading] load`` or
+``indentation`` (``speed`` must be 0), and its own ``[fem]`` section:
+
+=================  ==========================================================
+``[fem]`` key      meaning (default)
+=================  ==========================================================
+``model``          "axisymmetric" (default) or "3d" (quarter cylinder)
+``element_size``   element size in the contact zone, m (axisymmetric
+                   min(a_est/24, H/4); 3d min(a_est/8, H/2))
+``contact_zone``   radius of the refined candidate contact zone, m (1.4 a_est)
+``domain_radius``  lateral extent of the layer, m (contact_zone + 8 H)
+``far_size``       largest element size, m (H/2 axisymmetric, H in 3d)
+``grading``        size growth with distance from the zone, - (0.3)
+``solver``         "direct" (SuperLU) or "minres" (AMG block preconditioner)
+``rtol``           MINRES relative tolerance, - (1e-10)
+``fit_nodes``      surface vertices outside the edge fitted for the radius (3)
+``max_iterations`` active-set iteration limit (100)
+=================  ==========================================================
+
+a_est (m) is the smaller of the Hertz radius and the thin-layer asymptote
+(:mod:`.discretization`). Every failure raises a subclass of
+:class:`FemReferenceError`.
+"""
+
+from .errors import (ContactNotConvergedError, ContactZoneError, FemReferenceError,
+                     InputError, LinearSolverError, MeshError)
+from .problem import ContactProblem, ElasticMaterial, FemSettings, Indenter, Layer, Loading
+from .result import ContactResult
+from .solve import solve
+
+__all__ = [
+    "solve", "ContactProblem", "Layer", "ElasticMaterial", "Indenter", "Loading",
+    "FemSettings", "ContactResult", "FemReferenceError", "InputError", "MeshError",
+    "LinearSolverError", "ContactNotConvergedError", "ContactZoneError",
+]

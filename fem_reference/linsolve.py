@@ -1,0 +1,154 @@
+"""Linear solvers of the (condensed) displacement-pressure saddle system.
+
+:class:`DirectSolver` factorizes once with SuperLU (fill-reducing ordering of
+A^T + A, partial pivoting: the zero pressure block needs it). :class:`MinresSolver`
+runs MINRES preconditioned by blockdiag(AMG(A_uu), M_p / (2 G)): smoothed
+aggregation (pyamg, rigid-body near-null space) on the displacement block, and the
+pressure mass matrix, spectrally equivalent to the Schur complement
+B A_uu^-1 B^T of an incompressible solid, on the pressure block.
+"""
+
+from __future__ import annotations
+
+import time
+from typing import Optional
+
+import numpy as np
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+
+from .errors import LinearSolverError
+
+__all__ = ["DirectSolver", "MinresSolver"]
+
+
+class DirectSolver:
+    """Sparse LU of the saddle matrix ``S``, symmetrically scaled by ``scale``.
+
+    The unknowns (m and Pa) differ by many orders of magnitude, so the matrix is
+    factorized as D S D with D = diag(scale)^-1/2 (``scale``: the displacement
+    diagonal of S and the lumped M_p / (2 G)). The first attempt keeps the
+    symmetric minimum-degree ordering (no pivoting: least fill); if it breaks
+    down or is inaccurate, SuperLU runs again with COLAMD and partial pivoting.
+    Each solve does one step of iterative refinement and checks its residual.
+    """
+
+    name = "direct"
+
+    def __init__(self, S: sp.spmatrix, scale: np.ndarray):
+        t0 = time.perf_counter()
+        self.S = S.tocsr()
+        self.D = 1.0 / np.sqrt(scale)
+        Dm = sp.diags(self.D)
+        Ss = (Dm @ self.S @ Dm).tocsc()
+        probe = np.random.default_rng(0).standard_normal(Ss.shape[0])
+        self.lu = None
+        for perm, thresh in (("MMD_AT_PLUS_A", 0.0), ("COLAMD", 1.0)):
+            try:
+                lu = spla.splu(Ss, permc_spec=perm, diag_pivot_thresh=thresh,
+                               options=dict(SymmetricMode=thresh == 0.0))
+            except RuntimeError:
+                continue
+            x = lu.solve(probe)
+            if np.all(np.isfinite(x)) and \
+                    np.linalg.norm(Ss @ x - probe) <= 1e-8 * np.linalg.norm(probe):
+                self.lu = lu
+                break
+        if self.lu is None:
+            raise LinearSolverError("SuperLU failed to factorize the saddle system "
+                                    "(singular or too ill-conditioned)")
+        self.setup_time = time.perf_counter() - t0
+        self.iterations = 0
+        self.max_residual = 0.0
+        self.fill = self.lu.L.nnz + self.lu.U.nnz
+
+    def _apply(self, b):
+        if b.ndim == 1:
+            return self.D * self.lu.solve(self.D * b)
+        # column by column: SuperLU's multi-right-hand-side solve is far slower
+        return np.column_stack([self._apply(b[:, k]) for k in range(b.shape[1])])
+
+    def solve(self, b: np.ndarray) -> np.ndarray:
+        b = np.asarray(b, dtype=float)
+        x = self._apply(b)
+        x += self._apply(b - self.S @ x)
+        r = b - self.S @ x
+        rel = np.linalg.norm(r, axis=0) / np.maximum(np.linalg.norm(b, axis=0), 1e-300)
+        rel = float(np.max(rel))
+        self.max_residual = max(self.max_residual, rel)
+        if not np.all(np.isfinite(x)) or rel > 1e-8:
+            raise LinearSolverError(f"SuperLU solve has relative residual {rel:.2e} (> 1e-8)")
+        return x
+
+
+class MinresSolver:
+    """Block-preconditioned MINRES for [[A, -B^T], [-B, 0]] (first ``n_u`` unknowns
+    displacements, then pressures).
+
+    Parameters
+    ----------
+    S : sparse matrix
+        Condensed saddle matrix.
+    n_u : int
+        Number of displacement unknowns (they come first).
+    Mp : sparse matrix
+        Pressure mass matrix (m^3) of the pressure unknowns.
+    G : float
+        Shear modulus (Pa).
+    near_null : ndarray (n_u, k), optional
+        Near-null space (rigid-body modes) for the aggregation AMG.
+    rtol : float
+        Relative residual tolerance (-).
+    """
+
+    name = "minres"
+
+    def __init__(self, S, n_u: int, Mp, G: float, near_null: Optional[np.ndarray] = None,
+                 rtol: float = 1e-10, maxiter: int = 2000):
+        import pyamg
+
+        t0 = time.perf_counter()
+        self.S = S.tocsr()
+        self.n_u = n_u
+        Auu = self.S[:n_u, :n_u].tocsr()
+        self.amg = pyamg.smoothed_aggregation_solver(Auu, B=near_null, symmetry="symmetric",
+                                                     max_coarse=500)
+        self.amg_op = self.amg.aspreconditioner(cycle="V")
+        self.mp = spla.splu(sp.csc_matrix(Mp) / (2.0 * G))
+        n = S.shape[0]
+
+        def apply(x):
+            y = np.empty_like(x)
+            y[:n_u] = self.amg_op @ x[:n_u]
+            y[n_u:] = self.mp.solve(x[n_u:])
+            return y
+
+        self.prec = spla.LinearOperator((n, n), matvec=apply, dtype=float)
+        self.rtol = rtol
+        self.maxiter = maxiter
+        self.setup_time = time.perf_counter() - t0
+        self.iterations = 0
+        self.max_residual = 0.0
+        self.fill = 0
+
+    def _solve1(self, b):
+        count = [0]
+
+        def cb(_):
+            count[0] += 1
+
+        x, info = spla.minres(self.S, b, M=self.prec, rtol=self.rtol, maxiter=self.maxiter,
+                              callback=cb)
+        rel = float(np.linalg.norm(b - self.S @ x) / max(np.linalg.norm(b), 1e-300))
+        self.iterations += count[0]
+        self.max_residual = max(self.max_residual, rel)
+        if info != 0 or not np.isfinite(rel) or rel > 1e3 * self.rtol:
+            raise LinearSolverError(f"MINRES stopped with info={info} after {count[0]} iterations, "
+                                    f"relative residual {rel:.2e} (rtol {self.rtol:.1e})")
+        return x
+
+    def solve(self, b: np.ndarray) -> np.ndarray:
+        b = np.asarray(b, dtype=float)
+        if b.ndim == 1:
+            return self._solve1(b)
+        return np.column_stack([self._solve1(b[:, k]) for k in range(b.shape[1])])
