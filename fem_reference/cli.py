@@ -1,0 +1,70 @@
+"""Command line: ``fem-reference solve CASE.toml [--json] [--set s.k=v] [--plot F.png] [--vtu F.vtu]``.
+
+Progress (a line per stage and per active-set iteration) goes to stderr; the
+result goes to stdout, as one JSON object with ``--json`` (``contact_radius``
+m, ``indentation`` m, ``load`` N, ``peak_pressure`` Pa, ``mesh`` and
+``solver``). Exit status 0 on success, 2 for bad input, 1 when the solve fails.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from typing import List, Optional
+
+from .case import load_case
+from .errors import FemReferenceError, InputError
+
+__all__ = ["main"]
+
+
+def _parser() -> argparse.ArgumentParser:
+    ap = argparse.ArgumentParser(prog="fem-reference", description=__doc__.splitlines()[0])
+    sub = ap.add_subparsers(dest="command", required=True)
+    s = sub.add_parser("solve", help="solve a case file (elastic, stationary, frictionless)")
+    s.add_argument("case", help="TOML case file (README, 'Case files')")
+    s.add_argument("--json", action="store_true", help="print the result as one JSON object")
+    s.add_argument("--set", action="append", default=[], metavar="SECTION.KEY=VALUE",
+                   help="override an entry; the value is parsed as TOML")
+    s.add_argument("--plot", metavar="FILE.png", help="pressure profile and deformed surface")
+    s.add_argument("--vtu", metavar="FILE.vtu", help="export the fields (meshio)")
+    s.add_argument("--quiet", action="store_true", help="no progress lines on stderr")
+    return ap
+
+
+def main(argv: Optional[List[str]] = None) -> int:
+    args = _parser().parse_args(argv)
+    from .output import plot_result, write_vtu
+    from .solve import solve
+
+    def progress(line: str) -> None:
+        print(f"fem-reference: {line}", file=sys.stderr, flush=True)
+
+    try:
+        problem = load_case(args.case, args.set)
+        result = solve(problem, progress=None if args.quiet else progress)
+    except InputError as exc:
+        print(f"fem-reference: error: {exc}", file=sys.stderr)
+        return 2
+    except FemReferenceError as exc:
+        print(f"fem-reference: error: {type(exc).__name__}: {exc}", file=sys.stderr)
+        return 1
+    if args.plot:
+        plot_result(result, args.plot)
+    if args.vtu:
+        write_vtu(result, args.vtu)
+    summary = result.summary()
+    if args.json:
+        print(json.dumps(summary, indent=2))
+    else:
+        print(f"contact radius {result.contact_radius:.6e} m\nindentation    "
+              f"{result.indentation:.6e} m\nload           {result.load:.6e} N\n"
+              f"peak pressure  {result.peak_pressure:.6e} Pa\n"
+              f"{result.mesh.model}: {result.mesh.unknowns} unknowns, "
+              f"{result.solver.contact_iterations} active-set iterations")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
