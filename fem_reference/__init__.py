@@ -35,8 +35,9 @@ Command line: ``fem-reference solve CASE.toml --json [--set fem.model='"3d"']
 ``domain_radius``  lateral extent of the layer, m (contact_zone + 8 H)
 ``far_size``       largest element size, m (H/2 axisymmetric, H in 3d)
 ``grading``        size growth with distance from the zone, - (0.3)
+``refine``         uniform refinements of the gmsh mesh (nested levels), (0)
 ``solver``         "direct" (SuperLU) or "minres" (AMG block preconditioner)
-``rtol``           MINRES relative tolerance, - (1e-10)
+``rtol``           MINRES relative tolerance, - (1e-8)
 ``fit_nodes``      surface vertices outside the edge fitted for the radius (3)
 ``max_iterations`` active-set iteration limit (100)
 =================  ==========================================================

@@ -22,7 +22,11 @@ __all__ = ["Discretization", "estimate_contact_radius", "resolve"]
 
 @dataclass(frozen=True)
 class Discretization:
-    """Resolved sizes (m) of the mesh; see :class:`~fem_reference.problem.FemSettings`."""
+    """Resolved sizes (m) of the mesh; see :class:`~fem_reference.problem.FemSettings`.
+
+    ``mesh_size`` is the size gmsh meshes the zone with, ``element_size`` =
+    mesh_size / 2^refine the size after the uniform refinements.
+    """
 
     element_size: float
     contact_zone: float
@@ -30,6 +34,8 @@ class Discretization:
     far_size: float
     grading: float
     estimated_radius: float
+    mesh_size: float
+    refine: int
 
 
 def estimate_contact_radius(problem: ContactProblem) -> float:
@@ -71,5 +77,6 @@ def resolve(problem: ContactProblem) -> Discretization:
                          f"{zone + h} m, got {domain}")
     if zone < 4.0 * h:
         raise InputError(f"fem.contact_zone must be >= 4 element sizes = {4.0 * h} m, got {zone}")
-    return Discretization(element_size=h, contact_zone=zone, domain_radius=domain,
-                          far_size=far, grading=fem.grading, estimated_radius=a)
+    return Discretization(element_size=h / 2 ** fem.refine, contact_zone=zone,
+                          domain_radius=domain, far_size=far, grading=fem.grading,
+                          estimated_radius=a, mesh_size=h, refine=fem.refine)

@@ -29,7 +29,7 @@ TWO_PI = 2.0 * np.pi
 
 def _axi_strains(u, r):
     """(eps_rr, eps_zz, eps_tt, eps_rz) of an axisymmetric displacement."""
-    (ur, _), g = u.value, u.grad
+    ur, g = u[0], u.grad
     return g[0, 0], g[1, 1], ur / r, 0.5 * (g[0, 1] + g[1, 0])
 
 
@@ -45,12 +45,12 @@ def axi_stiffness(u, v, w):
 def axi_divergence(u, q, w):
     r = w.x[0]
     g = u.grad
-    return q * (g[0, 0] + u.value[0] / r + g[1, 1]) * TWO_PI * r
+    return q * (g[0, 0] + u[0] / r + g[1, 1]) * TWO_PI * r
 
 
 @BilinearForm
 def axi_coupling(u, mu, w):
-    return mu * u.value[1] * TWO_PI * w.x[0]
+    return mu * u[1] * TWO_PI * w.x[0]
 
 
 @LinearForm
@@ -75,7 +75,7 @@ def divergence_3d(u, q, w):
 
 @BilinearForm
 def coupling_3d(u, mu, w):
-    return mu * u.value[2]
+    return mu * u[2]
 
 
 @LinearForm

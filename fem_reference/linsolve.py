@@ -95,6 +95,9 @@ class MinresSolver:
         Pressure mass matrix (m^3) of the pressure unknowns.
     G : float
         Shear modulus (Pa).
+    scale : ndarray
+        Diagonal scale of the unknowns (see :class:`DirectSolver`); MINRES runs on
+        the scaled system.
     near_null : ndarray (n_u, k), optional
         Near-null space (rigid-body modes) for the aggregation AMG.
     rtol : float
@@ -103,18 +106,25 @@ class MinresSolver:
 
     name = "minres"
 
-    def __init__(self, S, n_u: int, Mp, G: float, near_null: Optional[np.ndarray] = None,
-                 rtol: float = 1e-10, maxiter: int = 2000):
+    def __init__(self, S, n_u: int, Mp, G: float, scale: np.ndarray,
+                 near_null: Optional[np.ndarray] = None, rtol: float = 1e-10,
+                 maxiter: int = 5000):
         import pyamg
 
         t0 = time.perf_counter()
-        self.S = S.tocsr()
+        self.D = 1.0 / np.sqrt(scale)  # same symmetric scaling as DirectSolver
+        Dm = sp.diags(self.D)
+        self.S0 = S.tocsr()
+        self.S = (Dm @ self.S0 @ Dm).tocsr()
         self.n_u = n_u
         Auu = self.S[:n_u, :n_u].tocsr()
+        if near_null is not None:
+            near_null = near_null / self.D[:n_u, None]
         self.amg = pyamg.smoothed_aggregation_solver(Auu, B=near_null, symmetry="symmetric",
                                                      max_coarse=500)
         self.amg_op = self.amg.aspreconditioner(cycle="V")
-        self.mp = spla.splu(sp.csc_matrix(Mp) / (2.0 * G))
+        Dp = sp.diags(self.D[n_u:])
+        self.mp = spla.splu((Dp @ sp.csc_matrix(Mp) @ Dp / (2.0 * G)).tocsc())
         n = S.shape[0]
 
         def apply(x):
@@ -137,9 +147,10 @@ class MinresSolver:
         def cb(_):
             count[0] += 1
 
-        x, info = spla.minres(self.S, b, M=self.prec, rtol=self.rtol, maxiter=self.maxiter,
-                              callback=cb)
-        rel = float(np.linalg.norm(b - self.S @ x) / max(np.linalg.norm(b), 1e-300))
+        xs, info = spla.minres(self.S, self.D * b, M=self.prec, rtol=self.rtol,
+                               maxiter=self.maxiter, callback=cb)
+        x = self.D * xs
+        rel = float(np.linalg.norm(b - self.S0 @ x) / max(np.linalg.norm(b), 1e-300))
         self.iterations += count[0]
         self.max_residual = max(self.max_residual, rel)
         if info != 0 or not np.isfinite(rel) or rel > 1e3 * self.rtol:

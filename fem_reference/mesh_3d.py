@@ -32,7 +32,7 @@ def quarter_cylinder_mesh(thickness: float, disc: Discretization):
         occ.fragment([(3, body)], cut)
         occ.synchronize()
         groups = {"base": [], "sym_x": [], "sym_y": [], "outer": [], "zone": [], "free": []}
-        tol = 1e-9 * rd
+        tol = 1e-5 * rd  # OCC bounding boxes carry a small tolerance
         for _, tag in gmsh.model.getEntities(2):
             x0, y0, z0, x1, y1, z1 = gmsh.model.getBoundingBox(2, tag)
             if z1 < tol:

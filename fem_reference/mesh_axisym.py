@@ -48,7 +48,7 @@ def _size_field(dim_tags, disc: Discretization) -> None:
     field.setNumbers(dist, dim_tags[0], dim_tags[1])
     field.setNumber(dist, "Sampling", 200)
     size = field.add("MathEval")
-    field.setString(size, "F", f"min({disc.element_size!r} + {disc.grading!r} * F{dist}, "
+    field.setString(size, "F", f"min({disc.mesh_size!r} + {disc.grading!r} * F{dist}, "
                                f"{disc.far_size!r})")
     field.setAsBackgroundMesh(size)
     for opt in ("Mesh.MeshSizeExtendFromBoundary", "Mesh.MeshSizeFromPoints",

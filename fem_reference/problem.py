@@ -132,11 +132,14 @@ class FemSettings:
     grading : float
         Growth of the element size with the distance from the contact zone,
         h = h_c + grading * distance (-). Default 0.3.
+    refine : int
+        Uniform refinements (each halves every element) of the gmsh mesh made with
+        ``element_size``: nested meshes for convergence studies (>= 0, default 0).
     solver : {"direct", "minres"}
         Linear solver of the displacement-pressure system: sparse LU (SuperLU), or
         MINRES with an AMG / pressure-mass block preconditioner.
     rtol : float
-        Relative residual tolerance of MINRES (-).
+        Relative (preconditioned) residual tolerance of MINRES (-), default 1e-8.
     fit_nodes : int
         Number of surface vertices (along a radius) just outside the contact used to
         fit g^(2/3) for the contact radius (>= 2); see :mod:`.postprocess`.
@@ -150,8 +153,9 @@ class FemSettings:
     domain_radius: Optional[float] = None
     far_size: Optional[float] = None
     grading: float = 0.3
+    refine: int = 0
     solver: str = "direct"
-    rtol: float = 1e-10
+    rtol: float = 1e-8
     fit_nodes: int = 3
     max_iterations: int = 100
 
@@ -167,7 +171,7 @@ class FemSettings:
             _optional_positive(f"fem.{name}", getattr(self, name), "m")
         _positive("fem.grading", self.grading, "(-)")
         _positive("fem.rtol", self.rtol, "(-)")
-        for name, low in (("fit_nodes", 2), ("max_iterations", 1)):
+        for name, low in (("fit_nodes", 2), ("max_iterations", 1), ("refine", 0)):
             value = getattr(self, name)
             if isinstance(value, bool) or not isinstance(value, int) or value < low:
                 raise InputError(f"fem.{name} must be an integer >= {low}, got {value!r}")

@@ -33,7 +33,7 @@ def _linear_solver(system: LayerSystem, problem: ContactProblem):
     if problem.fem.solver == "direct":
         return DirectSolver(system.S, system.scale)
     return MinresSolver(system.S, system.n_u_free, system.Mp, problem.material.shear_modulus,
-                        near_null=system.near_null, rtol=problem.fem.rtol)
+                        system.scale, near_null=system.near_null, rtol=problem.fem.rtol)
 
 
 def _compliance(system: LayerSystem, solver, progress) -> np.ndarray:

@@ -102,6 +102,8 @@ def build_system(problem: ContactProblem, disc: Discretization) -> LayerSystem:
     H = problem.layer.thickness
     t0 = time.perf_counter()
     mesh = quarter_cylinder_mesh(H, disc) if three_d else axisymmetric_mesh(H, disc)
+    if disc.refine:
+        mesh = mesh.refined(disc.refine)
     t1 = time.perf_counter()
     if three_d:
         dim = 3

@@ -1,0 +1,60 @@
+"""Bad input and failed solves end in clear errors; the CLI reports them."""
+
+import json
+
+import gmsh
+import pytest
+
+from fem_reference import (ContactProblem, ContactZoneError, ElasticMaterial, FemSettings,
+                           Indenter, Layer, Loading, MeshError, solve)
+from fem_reference.cli import main
+
+
+def _thick(**fem):
+    return ContactProblem(Layer(5e-3), ElasticMaterial(3e6), Indenter("paraboloid", 0.02),
+                          Loading(load=100.0), FemSettings(**fem))
+
+
+def test_load_too_large_for_the_refined_zone():
+    # contact radius ~4.5 mm, candidate zone 3 mm
+    with pytest.raises(ContactZoneError, match="raise fem.contact_zone"):
+        solve(_thick(element_size=2e-4, contact_zone=3e-3))
+
+
+def test_a_mesh_that_fails(monkeypatch):
+    def broken(dim=3):
+        raise Exception("no elements in volume")
+
+    monkeypatch.setattr(gmsh.model.mesh, "generate", broken)
+    with pytest.raises(MeshError, match="gmsh failed to mesh the layer: no elements"):
+        solve(_thick(element_size=4e-4))
+
+
+def test_indentation_control_inverts_load_control():
+    by_load = solve(_thick(element_size=2e-4))
+    by_disp = solve(ContactProblem(Layer(5e-3), ElasticMaterial(3e6),
+                                   Indenter("paraboloid", 0.02),
+                                   Loading(indentation=by_load.indentation),
+                                   FemSettings(element_size=2e-4, contact_zone=7e-3)))
+    assert by_disp.load == pytest.approx(100.0, rel=1e-8)
+    assert by_disp.contact_radius == pytest.approx(by_load.contact_radius, rel=1e-8)
+
+
+def test_cli_json_plot_vtu(tmp_path, capsys):
+    case = tmp_path / "case.toml"
+    case.write_text('[layer]\nthickness = 5e-3\n[material]\nmodel = "elastic"\n'
+                    'shear_modulus = 3e6\n[indenter]\nshape = "sphere"\nradius = 0.02\n'
+                    '[loading]\nspeed = 0.0\nload = 100.0\n[grid]\nspacing = 0.25e-3\n')
+    png, vtu = tmp_path / "p.png", tmp_path / "f.vtu"
+    code = main(["solve", str(case), "--json", "--set", "fem.element_size=2e-4",
+                 "--plot", str(png), "--vtu", str(vtu)])
+    out = capsys.readouterr()
+    assert code == 0
+    data = json.loads(out.out)
+    assert {"contact_radius", "indentation", "load", "peak_pressure", "mesh", "solver"} <= set(data)
+    assert data["load"] == pytest.approx(100.0)
+    assert 4.3e-3 < data["contact_radius"] < 4.7e-3
+    assert "contact iteration" in out.err
+    assert png.stat().st_size > 0 and vtu.stat().st_size > 0
+    assert main(["solve", str(case), "--set", "loading.speed=0.1"]) == 2
+    assert "stationary only" in capsys.readouterr().err
