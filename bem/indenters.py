@@ -63,15 +63,17 @@ class Paraboloid:
 @dataclass(frozen=True)
 class Cylinder:
     """Circular roller of radius ``radius`` (m), axis along ``y``, flat ends at
-    ``|y| = length / 2`` (m; ``inf`` for a roller longer than the candidate region)."""
+    ``|y| = length / 2`` (m). The length must be finite: a roller longer than the candidate
+    region would touch its edge, which the 3D model cannot represent (its contact would be
+    a periodic line contact)."""
 
     radius: float
-    length: float = math.inf
+    length: float
 
     def __post_init__(self) -> None:
         _check_radius(self.radius)
-        if not self.length > 0:
-            raise ValueError(f"length must be > 0 m, got {self.length!r}")
+        if not (isinstance(self.length, (int, float)) and math.isfinite(self.length) and self.length > 0):
+            raise ValueError(f"length must be finite and > 0 m, got {self.length!r}")
 
     def profile(self, X, Y):
         X, Y = np.broadcast_arrays(np.asarray(X, float), np.asarray(Y, float))

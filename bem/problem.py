@@ -61,7 +61,7 @@ def auto_half_width(layer: Layer, indenter, loading: Loading, spacing: float) ->
     An upper estimate of the contact radius: Hertz on an incompressible half-space with
     the relaxed modulus ``G(0)`` (a bonded layer is stiffer, the moving contact too) under
     load control, or the radius where the profile reaches the indentation under
-    displacement control; times 1.25, plus two spacings.
+    displacement control; times 1.25, plus two spacings; at least half a roller's length.
     """
     R = getattr(indenter, "radius", None)
     if R is None:
@@ -71,7 +71,9 @@ def auto_half_width(layer: Layer, indenter, loading: Loading, spacing: float) ->
         a = (3 * loading.load * R / (16 * G0)) ** (1 / 3)
     else:
         a = math.sqrt(2 * R * loading.indentation)
-    return min(1.25 * a + 2 * spacing, 0.9 * R)
+    half = min(1.25 * a + 2 * spacing, 0.9 * R)
+    length = getattr(indenter, "length", None)  # a roller spans its length along y
+    return half if length is None else max(half, length / 2 + 2 * spacing)
 
 
 def solve_frictionless(
