@@ -156,8 +156,9 @@ def _run_rows(result):
             c = result.convergence.get((method, q))
             if c is not None:
                 scale = 1e3
-                rows.append([method, "Richardson", _fmt(c.extrapolated * scale) if q == "contact_radius" else "",
-                             _fmt(c.extrapolated * scale) if q == "indentation" else "", f"order {c.order:.2f}", ""])
+                note = f"order {c.order:.2f}" + ("" if c.asymptotic else " (not asymptotic: finest kept)")
+                rows.append([method, f"Richardson {q}", _fmt(c.extrapolated * scale) if q == "contact_radius" else "",
+                             _fmt(c.extrapolated * scale) if q == "indentation" else "", note, ""])
     return rows
 
 
@@ -190,7 +191,8 @@ def _metrics(results) -> dict:
                 "seconds": r.seconds,
                 "runs": {m: [{"size": run.size, **{k: float(v) for k, v in run.scalars.items()}, "seconds": run.seconds}
                              for run in runs] for m, runs in r.runs.items()},
-                "convergence": {f"{m}.{q}": {"values": list(c.values), "order": c.order, "extrapolated": c.extrapolated}
+                "convergence": {f"{m}.{q}": {"values": list(c.values), "order": c.order, "extrapolated": c.extrapolated,
+                                              "error_finest": c.error_finest, "asymptotic": c.asymptotic}
                                 for (m, q), c in r.convergence.items()},
                 "gates": [{"quantity": g.quantity, "method": g.method, "against": g.against, "level": g.level,
                            "value": g.value, "reference": g.reference, "error": g.error, "tolerance": g.tolerance,

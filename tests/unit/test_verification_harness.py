@@ -15,7 +15,11 @@ def test_richardson_recovers_order_and_limit():
     q = [1.0 + 0.3 * h**1.7 for h in (0.4, 0.2, 0.1)]
     c = richardson(q)
     assert abs(c.order - 1.7) < 1e-12
-    assert abs(c.extrapolated - 1.0) < 1e-12
+    assert abs(c.extrapolated - 1.0) < 1e-12 and c.asymptotic
+    stagnant = richardson([4.5011, 4.5077, 4.5139])  # observed order 0.09: no extrapolation
+    assert not stagnant.asymptotic and stagnant.extrapolated == 4.5139
+    assert abs(stagnant.error_finest - 3 * 0.0062) < 1e-12
+    assert not richardson([1.0, 1.2, 1.1]).asymptotic  # non-monotone
 
 
 def test_radius_fit_is_exact_for_the_hertz_edge():
