@@ -143,7 +143,7 @@ def build_system(problem: ContactProblem, disc: Discretization) -> LayerSystem:
     Cfull = sp.hstack([Cu, sp.csr_matrix((len(lam_nodes), pb.N))]).tocsr()
     C = Cfull[:, free].tocsr()
     m = asm(f["m"], fbl)[lam_nodes]
-    xq = fbl.global_coordinates().value
+    xq = np.asarray(fbl.global_coordinates())
     s_q = problem.indenter.profile(np.sqrt(np.sum(xq[:dim - 1] ** 2, axis=0)))
     q = asm(f["q"], fbl, s=s_q)[lam_nodes]
     xy = mesh.p[:dim - 1, lam_nodes].T
