@@ -220,6 +220,11 @@ def evaluate_gates(case: dict, result: CaseResult) -> None:
                     diff = pressure_difference(run.r, run.pressure, ref_profile, ref_radius)
                     value = getattr(diff, quantity.replace("pressure_", ""))
                     error, ref_value = value, 0.0
+                    for other in PRESSURE:  # the other three metrics, shown alongside
+                        if other != quantity:
+                            v = float(getattr(diff, other.replace("pressure_", "")))
+                            result.gates.append(Gate(result.name, other, method, against, level, v, 0.0, v,
+                                                     math.inf, "Reported alongside the gated pressure metric.", True))
                 else:
                     value = run.scalars[quantity]
                     if level == "extrapolated":
