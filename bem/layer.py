@@ -192,12 +192,12 @@ def _dd_series(a, b, H, odd):
     return acc * (H**3 if odd else H**2)
 
 
-def _dsc(x, y, H, kappa):
-    """``exp(-kappa H) (exp(x H) - exp(y H)) / (x - y)`` (m), symmetric, stable."""
+def _dd_exp(x, y, t):
+    """``(exp(x t) - exp(y t)) / (x - y)`` (m), symmetric in ``x, y``, stable as ``x -> y``."""
     swap = y.real > x.real
     hi = np.where(swap, y, x)
     lo = np.where(swap, x, y)
-    return H * np.exp((hi - kappa) * H) * _exprel((lo - hi) * H)
+    return t * np.exp(hi * t) * _exprel((lo - hi) * t)
 
 
 def _divided_differences(k, q, H, kappa):
@@ -217,8 +217,8 @@ def _divided_differences(k, q, H, kappa):
 
     i = close
     kk, qq, kap = k[i].astype(complex), q[i], kappa[i]
-    dp = _dsc(kk, qq, H, kap)
-    dm = _dsc(-kk, -qq, H, kap)
+    dp = _dd_exp(kk - kap, qq - kap, H)  # exp(-kappa H) (e^{kH} - e^{qH}) / (k - q)
+    dm = _dd_exp(-kk - kap, -qq - kap, H)
     phi2[i] = (dp - dm) / (2 * (kk + qq))
     e_plus = (qq * dp - np.exp((qq - kap) * H)) / (kk * qq)
     e_minus = (-qq * dm - np.exp((-qq - kap) * H)) / (kk * qq)
@@ -230,14 +230,6 @@ def _divided_differences(k, q, H, kappa):
     phi2[i] = (_scaled_cosh(kk, H, kap) - _scaled_cosh(qq, H, kap)) / da
     phi1[i] = (_scaled_sinh_over(kk, H, kap) - _scaled_sinh_over(qq, H, kap)) / da
     return phi2, phi1
-
-
-def _dd_exp(x, y, t):
-    """``(exp(x t) - exp(y t)) / (x - y)`` (m), symmetric in ``x, y``, stable as ``x -> y``."""
-    swap = y.real > x.real
-    hi = np.where(swap, y, x)
-    lo = np.where(swap, x, y)
-    return t * np.exp(hi * t) * _exprel((lo - hi) * t)
 
 
 def _wave_frame_small(k, q, H):
