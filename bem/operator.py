@@ -59,6 +59,24 @@ class ComplianceOperator:
         out = sfft.irfft2(sfft.rfft2(f, s=self._size, workers=-1) * np.conj(self._hat), s=self._size, workers=-1)
         return out[:Ky, :Kx]
 
+    def circulant_inverse(self, values: np.ndarray) -> np.ndarray:
+        """Exact inverse of the circulant embedding of ``C`` applied to ``values``
+        (shape ``(K_y, K_x)``, zero-padded to the embedding), read back on the grid.
+
+        An approximate inverse of ``C`` restricted to a node set, cheap (two FFTs) and
+        spectrally close to it: a preconditioner for Krylov solves on contact sets. Raises
+        ``ZeroDivisionError`` if the embedding is (nearly) singular.
+        """
+        if not hasattr(self, "_inv_hat"):
+            mag = np.abs(self._hat)
+            if mag.min() <= 1e-12 * mag.max():
+                raise ZeroDivisionError("the circulant embedding of the compliance is nearly singular")
+            self._inv_hat = 1.0 / self._hat
+        Ky, Kx = self.grid.shape
+        f = np.asarray(values, dtype=float).reshape(Ky, Kx)
+        out = sfft.irfft2(sfft.rfft2(f, s=self._size, workers=-1) * self._inv_hat, s=self._size, workers=-1)
+        return out[:Ky, :Kx]
+
     def dense(self, nodes: np.ndarray | None = None) -> np.ndarray:
         """Dense matrix ``C[M, N]`` (m/N) on the flat node indices ``nodes`` (all if None)."""
         Ky, Kx = self.grid.shape
