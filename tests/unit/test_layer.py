@@ -16,8 +16,8 @@ ANGLES = [0.0, 0.7, np.pi / 2, 2.5]
 
 @pytest.mark.parametrize("G, rho_V2", MATERIALS)
 def test_closed_form_matches_matrix_exponential(G, rho_V2):
-    """All nine entries, kH from 0 to 1e5: 1e-10 relative to the largest entry (the
-    reference itself carries ~1e-13; entries that vanish like (kH)^2 next to H/G cannot
+    """All nine entries, kH from 0 to 1e5: 1e-11 relative to the largest entry (measured
+    1.3e-12; the issue asks 1e-10; the reference itself carries ~1e-13; entries that vanish like (kH)^2 next to H/G cannot
     be resolved relative to themselves by the exponential route)."""
     worst = 0.0
     for kh in KH:
@@ -27,7 +27,7 @@ def test_closed_form_matches_matrix_exponential(G, rho_V2):
             C = surface_compliance(nx, ny, G, rho_V2, H)
             R = surface_compliance_expm(nx, ny, G, rho_V2, H)
             worst = max(worst, np.abs(C - R).max() / np.abs(R).max())
-    assert worst < 1e-10
+    assert worst < 1e-11
 
 
 def test_k_zero_is_exact():
