@@ -1,0 +1,248 @@
+"""Steady rolling and sliding with Coulomb friction (paper eqs. 1-4, 14-18, 51, 63).
+
+Unknowns (nodal fields, N): the compressive normal forces ``N >= 0``, the tangential
+forces on the layer ``S = (S_x, S_y)`` (the paper's ``F_U, F_V``; the indenter receives
+``-S``), the indentation ``d`` (m), the rotational speed ``Omega`` (rad/s) and the driving
+load (``Q`` in N, ``T`` in N m). Displacements (eq. 51, ``F_W = -N``):
+
+    delta = C_ww N - C_wu S_x - C_wv S_y      (downward, m)
+    u     = -C_uw N + C_uu S_x + C_uv S_y,    v = -C_vw N + C_vu S_x + C_vv S_y
+
+Contact: gap ``h = s - d + delta >= 0``, ``N >= 0``, ``N h = 0``. Friction (eqs. 16-18) with
+the slip velocity ``w`` of :mod:`bem.kinematics` (upwind ``d/dx``): stick ``w = 0``,
+``|S| <= mu N``; slip ``S = mu N w / |w|`` (the indenter drags the layer along its own
+relative motion and is resisted by the opposite force).
+
+Sphere equilibrium, small-slope contact on a body of revolution about the ``y`` axis
+(the paper's sec. 2: normal stresses radial, tangential ones circumferential): a normal
+force passes through the centre (no moment) and has the horizontal component
+``N arm`` (``arm = x / R``, the one of the frictionless solver); a tangential force acts
+at the distance ``l(y)`` from the axis. With ``Q`` (N) applied at the height ``h_Q`` above
+the centre (``R``: pushed at the top; 0: at the axle) and ``T_a`` (N m) at the axle:
+
+    sum N = P,     Q = sum N arm + sum S_x,     T = T_a + h_Q Q = -sum l S_x
+
+and ``R_r = Q + T Omega / V`` (eqs. 1, 63; eq. 63's ``sum F_U`` is the horizontal resultant
+``sum N arm + sum S_x``). Loading modes close the system with one linear equation:
+``pushed_at_top`` (``h_Q = R, T_a = 0``), ``towed`` (``h_Q = 0, T_a = 0``), ``torque``
+(``Q = 0``), ``omega`` (``Omega`` given; ``Q`` and ``T`` both come out). Without friction
+``S = 0``, ``T = 0`` and ``R_r = sum N arm``: the frictionless solution.
+
+Energy: the rigid-body power ``R_r V`` equals the layer's power ``-V sum F . du/dx``
+plus the friction power ``sum S . w`` plus ``V sum N (arm - dh/dx)``, which vanishes when
+the rolling arm is the profile slope (paraboloid) and is ``O(r^2/R^2)`` of ``R_r`` for the
+exact sphere (the small-slope theory's own inconsistency; see :mod:`bem.energy`).
+
+Solver: :mod:`bem.rolling` (Kalker's active set on contact, stick and slip sets).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .contact import ContactError, ContactNotConverged
+from .grid import Grid
+
+__all__ = [
+    "MODES", "Friction", "FrictionRecord", "FrictionalContact", "FrictionNotConverged",
+    "LoadingUnreachable",
+]
+
+#: loading modes that close the sphere's equilibrium
+MODES = ("pushed_at_top", "towed", "torque", "omega")
+
+
+class FrictionNotConverged(ContactNotConverged):
+    """The stick/slip active set or the slip directions did not converge."""
+
+
+class LoadingUnreachable(ContactError):
+    """Friction cannot carry the load the loading mode asks for (e.g. ``mu`` too small
+    to transmit the torque of a sphere pushed at the top)."""
+
+
+@dataclass(frozen=True)
+class Friction:
+    """Coulomb friction and the loading mode of a rolling or sliding indenter.
+
+    Parameters
+    ----------
+    mu : float
+        Coefficient of sliding friction (-), ``>= 0``.
+    mode : str
+        One of :data:`MODES`: ``pushed_at_top`` (``Q`` at the top, ``T = Q R``; the paper's
+        case, eq. 4), ``towed`` (``Q`` at the axle, ``T = 0``), ``torque`` (driven by a torque
+        at the axle, ``Q = 0``), ``omega`` (``Omega`` prescribed).
+    omega : float, optional
+        ``Omega`` (rad/s), positive for forward rolling (clockwise with ``+x`` to the right
+        and ``+z`` up); mode ``omega`` only (0 is pure sliding).
+    radius : float, optional
+        Distance (m) from the axis of rotation to the lowest point, for indenters
+        without a radius (height maps); defaults to the indenter's radius.
+    max_iter : int
+        Active-set iterations allowed (> 0).
+    direction_tol : float
+        Convergence of the slip law on slip nodes: largest of ``||S| / (mu N) - 1|`` and
+        ``|sin|`` of the angle between ``S`` and ``w`` (-), > 0.
+    set_tol : float
+        When the stick/slip sets alternate between two states (a node on the stick/slip
+        border of the discrete problem), the state is accepted if a stick node exceeds the
+        cone by less than ``set_tol mu N`` and a slip node's force opposes its slip velocity
+        by less than ``set_tol V`` (-), >= 0; otherwise the solve raises.
+    """
+
+    mu: float
+    mode: str = "pushed_at_top"
+    omega: float | None = None
+    radius: float | None = None
+    max_iter: int = 300
+    direction_tol: float = 1e-7
+    set_tol: float = 1e-2
+
+    def __post_init__(self) -> None:
+        if not (isinstance(self.mu, (int, float)) and math.isfinite(self.mu) and self.mu >= 0):
+            raise ValueError(f"mu must be >= 0, got {self.mu!r}")
+        if self.mode not in MODES:
+            raise ValueError(f"mode must be one of {', '.join(MODES)}, got {self.mode!r}")
+        if (self.mode == "omega") != (self.omega is not None):
+            raise ValueError(f"omega (rad/s) must be given with mode = 'omega' and only then, "
+                             f"got mode = {self.mode!r}, omega = {self.omega!r}")
+        if self.omega is not None and not math.isfinite(self.omega):
+            raise ValueError(f"omega must be finite (rad/s), got {self.omega!r}")
+        if self.radius is not None and not (math.isfinite(self.radius) and self.radius > 0):
+            raise ValueError(f"radius must be > 0 m, got {self.radius!r}")
+        if not (isinstance(self.max_iter, int) and self.max_iter > 0):
+            raise ValueError(f"max_iter must be an integer > 0, got {self.max_iter!r}")
+        if not (self.direction_tol > 0):
+            raise ValueError(f"direction_tol must be > 0, got {self.direction_tol!r}")
+        if not (self.set_tol >= 0):
+            raise ValueError(f"set_tol must be >= 0, got {self.set_tol!r}")
+
+
+@dataclass(frozen=True)
+class FrictionRecord:
+    """How the frictional solve went.
+
+    ``iterations`` of the active set; ``history`` one tuple per iteration
+    ``(contact nodes, stick nodes, largest slip-direction change, Omega)``;
+    ``linear_solver`` (``dense`` or ``gmres``) and ``linear_iterations``; residuals at the
+    end: ``gap_residual`` (max ``|h|`` on contact and penetration elsewhere, relative to
+    ``d``), ``stick_residual`` (max ``|w| / V`` on stick nodes), ``coulomb_residual``
+    (max of ``|S| / (mu N) - 1`` on stick nodes and of the slip-direction misfit).
+    """
+
+    iterations: int
+    history: tuple
+    linear_solver: str
+    linear_iterations: int
+    gap_residual: float
+    stick_residual: float
+    coulomb_residual: float
+
+
+@dataclass(frozen=True)
+class FrictionalContact:
+    """Result of a frictional rolling/sliding solve; fields are ``(K_y, K_x)`` arrays.
+
+    Attributes
+    ----------
+    grid : Grid
+    force : ndarray
+        Compressive nodal normal forces ``N`` (N).
+    force_x, force_y : ndarray
+        Tangential nodal forces on the layer (N), along ``+x, +y``.
+    deflection, displacement_x, displacement_y : ndarray
+        Surface displacements (m): downward, along ``+x``, along ``+y``.
+    gap : ndarray
+        ``h`` (m).
+    slip_x, slip_y : ndarray
+        Slip velocity ``w`` (m/s), indenter relative to layer (eqs. 14-15); 0 off contact.
+    stick : ndarray of bool
+        Contact nodes in stick.
+    indentation, load, omega, driving_force, driving_torque : float
+        ``d`` (m), ``P`` (N), ``Omega`` (rad/s), ``Q`` (N), ``T`` (N m, about the centre).
+    rolling_resistance, rolling_resistance_friction, rolling_resistance_viscous : float
+        ``R_r`` (eq. 1), ``R_r^F`` (eq. 2), ``R_r^V = R_r - R_r^F`` (eq. 3), in N.
+    speed, mu : float
+        ``V`` (m/s), ``mu`` (-).
+    mode : str
+    record : FrictionRecord
+    """
+
+    grid: Grid
+    force: np.ndarray
+    force_x: np.ndarray
+    force_y: np.ndarray
+    deflection: np.ndarray
+    displacement_x: np.ndarray
+    displacement_y: np.ndarray
+    gap: np.ndarray
+    slip_x: np.ndarray
+    slip_y: np.ndarray
+    stick: np.ndarray
+    indentation: float
+    load: float
+    omega: float
+    driving_force: float
+    driving_torque: float
+    rolling_resistance: float
+    rolling_resistance_friction: float
+    rolling_resistance_viscous: float
+    speed: float
+    mu: float
+    mode: str
+    record: FrictionRecord
+
+    @property
+    def contact(self) -> np.ndarray:
+        """Nodes in contact (``N > 0``)."""
+        return self.force > 0
+
+    @property
+    def slip(self) -> np.ndarray:
+        """Contact nodes in slip."""
+        return self.contact & ~self.stick
+
+    @property
+    def pressure(self) -> np.ndarray:
+        """``N / (a_x a_y)`` (Pa)."""
+        return self.force / self.grid.cell_area
+
+    @property
+    def traction_x(self) -> np.ndarray:
+        """``tau_xz`` on the layer (Pa)."""
+        return self.force_x / self.grid.cell_area
+
+    @property
+    def traction_y(self) -> np.ndarray:
+        """``tau_yz`` on the layer (Pa)."""
+        return self.force_y / self.grid.cell_area
+
+    @property
+    def stick_fraction(self) -> float:
+        """Stick nodes over contact nodes (-)."""
+        n = int(self.contact.sum())
+        return float((self.stick & self.contact).sum()) / n if n else math.nan
+
+    @property
+    def contact_area(self) -> float:
+        """``a_x a_y`` per contact node (m^2)."""
+        return float(self.contact.sum()) * self.grid.cell_area
+
+    @property
+    def contact_radius(self) -> float:
+        """``sqrt(area / pi)`` (m)."""
+        return math.sqrt(self.contact_area / math.pi)
+
+    @property
+    def peak_pressure(self) -> float:
+        """Largest nodal pressure (Pa)."""
+        return float(self.pressure.max())
+
+    @property
+    def friction_power(self) -> float:
+        """``sum S . w`` over the contact (W), eq. 2 times ``V``."""
+        return float((self.force_x * self.slip_x + self.force_y * self.slip_y).sum())

@@ -1,0 +1,396 @@
+"""Solver of steady rolling/sliding contact with Coulomb friction (see :mod:`bem.friction`).
+
+Kalker's active-set algorithm (Kalker 1990, "Three-dimensional elastic bodies in rolling
+contact", ch. 3; the CONTACT code's NORM/TANG iterations), done on the coupled system:
+for a trial contact set ``C``, stick set ``A`` (subset of ``C``) and slip directions ``e``
+on the slip set ``C \\ A``, every condition is linear in the unknowns
+``(N_C, S_A, d, Omega)``:
+
+* gap ``h = 0`` on ``C`` (normal forces of slip nodes bring their friction
+  ``S = mu N e`` along, so the normal-tangential coupling of a layer is kept exactly);
+* no slip, ``w = 0`` (two rows), on ``A``;
+* ``sum N = P`` (load control) and the loading mode's equilibrium row (unless
+  ``Omega`` is given).
+
+One dense LU solves it (or GMRES with the FFT operators for large sets). Then the sets
+are updated: tension leaves the contact, penetration joins it; a stick node whose force
+exceeds the cone ``|S| <= mu N`` slips along ``S/|S|``; a slip node whose velocity turns
+against its force ``w . e <= 0`` sticks; the slip directions take ``w/|w|`` (a fixed point
+that contracts because slip velocities hardly turn between iterations). It stops when
+the sets repeat and no direction moves by more than ``direction_tol``; that state
+satisfies every discrete condition exactly (to the linear solve). Why this and not a
+semi-smooth Newton method on ``S = proj(S + c w)``: the active-set iteration needs no
+parameter ``c`` (whose good value depends on the non-symmetric, badly scaled compliance),
+ends on an exact complementarity state, each step is one linear solve the size of the
+contact, and it typically needs 5-20 steps here because slip zones are small; a recurring
+set state (a cycle) switches to one-node updates and then raises.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import replace
+from typing import Callable
+
+import numpy as np
+
+from .contact import ContactAtEdge, ContactError, solve_normal, _edge_nodes
+from .friction import Friction, FrictionalContact, FrictionNotConverged, FrictionRecord, LoadingUnreachable
+from .grid import Grid
+from .kinematics import indenter_radius, rolling_radius, upwind_table
+from .operator import ComplianceOperator
+from .problem import Problem
+from .spectral import BLOCKS, influence_kernels
+
+__all__ = ["RollingOperators", "solve_rolling", "solve_friction"]
+
+_DIFFERENCED = ("uw", "uu", "uv", "vw", "vu", "vv")
+
+
+class RollingOperators:
+    """The nine kernel tables of a grid, the upwind-differenced ``u, v`` rows, and their
+    dense blocks and FFT operators (built on demand)."""
+
+    def __init__(self, grid: Grid, kernels: dict):
+        self.grid = grid
+        self.kernels = kernels
+        self.tables = {b: kernels[b] for b in ("ww", "wu", "wv")}
+        for b in _DIFFERENCED:
+            self.tables["d" + b] = upwind_table(kernels[b], grid.spacing_x)
+        self._ops: dict = {}
+
+    def op(self, name: str) -> ComplianceOperator:
+        if name not in self._ops:
+            table = self.tables[name] if name in self.tables else self.kernels[name]
+            self._ops[name] = ComplianceOperator(self.grid, table)
+        return self._ops[name]
+
+    def dense(self, name: str, rows: np.ndarray, cols: np.ndarray) -> np.ndarray:
+        Ky, Kx = self.grid.shape
+        jr, ir = np.divmod(rows, Kx)
+        jc, ic = np.divmod(cols, Kx)
+        return self.tables[name][(jr[:, None] - jc[None, :]) + Ky - 1, (ir[:, None] - ic[None, :]) + Kx - 1]
+
+    def fields(self, N, Sx, Sy):
+        """Downward deflection (m) and upwind strains ``du/dx, dv/dx`` (-) on the grid."""
+        a = self.op
+        delta = a("ww").apply(N) - a("wu").apply(Sx) - a("wv").apply(Sy)
+        ex = -a("duw").apply(N) + a("duu").apply(Sx) + a("duv").apply(Sy)
+        ey = -a("dvw").apply(N) + a("dvu").apply(Sx) + a("dvv").apply(Sy)
+        return delta, ex, ey
+
+    def displacements(self, N, Sx, Sy):
+        """Horizontal surface displacements ``u, v`` (m)."""
+        a = self.op
+        u = -a("uw").apply(N) + a("uu").apply(Sx) + a("uv").apply(Sy)
+        v = -a("vw").apply(N) + a("vu").apply(Sx) + a("vv").apply(Sy)
+        return u, v
+
+
+def _constraint(mode: str, arm, ell, R):
+    """Coefficients ``(c_N, c_x)`` of the loading mode's row ``c_N . N + c_x . S_x = 0``."""
+    if mode == "pushed_at_top":  # Q R = -sum l S_x, Q = sum N arm + sum S_x
+        return R * arm, R + ell
+    if mode == "towed":  # T = 0
+        return np.zeros_like(arm), ell
+    if mode == "torque":  # Q = 0
+        return arm, np.ones_like(arm)
+    return None
+
+
+def _solve_sets(ops, s, C, stick, e, k, mu, ell, V, load, indentation, omega, cons):
+    """Solve the linear system of one active-set state; returns full-grid N, Sx, Sy, d, Omega.
+
+    Unknowns ``(N_C, Sx_C, Sy_C, d, Omega)``; rows: gap on ``C``; on stick nodes the two
+    no-slip rows; on slip nodes the Newton linearisation of eqs. 17-18 about the current
+    force direction ``e``: ``e . S = mu N`` and ``e_perp . w - k e_perp . S = 0`` with
+    ``k = (e . w) / |S|`` from the previous iterate (``k = 0`` on new slip nodes).
+    """
+    g = ops.grid
+    size = g.nodes_x * g.nodes_y
+    nC = C.size
+    free_d, free_om = load is not None, omega is None
+    n = 3 * nC + free_d + free_om
+    M = np.zeros((n, n))
+    b = np.zeros(n)
+    cx_, cy_ = slice(nC, 2 * nC), slice(2 * nC, 3 * nC)
+    iD = 3 * nC
+    iO = iD + free_d
+    diag = float(ops.tables["ww"][g.nodes_y - 1, g.nodes_x - 1])
+    # gap rows (m)
+    M[:nC, :nC] = ops.dense("ww", C, C)
+    M[:nC, cx_] = -ops.dense("wu", C, C)
+    M[:nC, cy_] = -ops.dense("wv", C, C)
+    b[:nC] = -s[C] + (0.0 if free_d else indentation)
+    if free_d:
+        M[:nC, iD] = -1.0
+    # a_x w_x / V and a_x w_y / V on every contact node, as rows over the unknowns (m)
+    ax = g.spacing_x
+    Dx = ax * np.hstack([-ops.dense("duw", C, C), ops.dense("duu", C, C), ops.dense("duv", C, C)])
+    Dy = ax * np.hstack([-ops.dense("dvw", C, C), ops.dense("dvu", C, C), ops.dense("dvv", C, C)])
+    ox = -ax * ell[C] / V  # Omega coefficient in a_x w_x / V
+    bx = -ax * np.ones(nC)  # constant part of a_x w_x / V, moved to the right
+    if not free_om:
+        bx = bx + ax * omega * ell[C] / V
+    st = stick[C]
+    A, B = np.flatnonzero(st), np.flatnonzero(~st)
+    rx, ry = nC + A, 2 * nC + A
+    M[rx, :iD], M[ry, :iD] = Dx[A], Dy[A]
+    b[rx] = bx[A]
+    if free_om:
+        M[rx, iO] = ox[A]
+    if B.size:
+        ex, ey = e[C[B], 0], e[C[B], 1]
+        kk = k[C[B]] * ax / V
+        r1, r2 = nC + B, 2 * nC + B
+        M[r1, B] = -mu * diag
+        M[r1, nC + B] = ex * diag
+        M[r1, 2 * nC + B] = ey * diag
+        M[r2, :iD] = -ey[:, None] * Dx[B] + ex[:, None] * Dy[B]
+        M[r2, nC + B] += kk * ey
+        M[r2, 2 * nC + B] -= kk * ex
+        b[r2] = -ey * bx[B]
+        if free_om:
+            M[r2, iO] = -ey * ox[B]
+    row = iD
+    if free_d:
+        M[row, :nC] = diag
+        b[row] = diag * load
+        row += 1
+    if free_om:
+        cN, cx = cons
+        scale = diag / max(np.abs(cx).max(), 1e-300)
+        M[row, :nC] = cN[C] * scale
+        M[row, cx_] = cx[C] * scale
+    try:
+        x = np.linalg.solve(M, b)
+    except np.linalg.LinAlgError as exc:
+        raise FrictionNotConverged(f"singular system on {nC} contact / {A.size} stick nodes: {exc}") from exc
+    N, Sx, Sy = np.zeros(size), np.zeros(size), np.zeros(size)
+    N[C], Sx[C], Sy[C] = x[:nC], x[cx_], x[cy_]
+    d = x[iD] if free_d else indentation
+    om = x[iO] if free_om else omega
+    return N, Sx, Sy, float(d), float(om)
+
+
+def solve_rolling(ops: RollingOperators, profile, arm, ell, radius: float, speed: float,
+                  friction: Friction, *, load=None, indentation=None,
+                  progress: Callable[[str], None] | None = None) -> FrictionalContact:
+    """Frictional steady rolling/sliding on prepared operators.
+
+    Parameters
+    ----------
+    ops : RollingOperators
+    profile : ndarray ``(K_y, K_x)``
+        Indenter profile (m), ``inf`` where it cannot touch.
+    arm : ndarray
+        Horizontal projection of a unit normal force (-), ``x / R``.
+    ell : ndarray
+        Distance from the axis of rotation (m), ``l(y)``.
+    radius : float
+        ``R`` (m), the height of the top point above the centre.
+    speed : float
+        ``V`` (m/s), > 0.
+    friction : Friction
+    load, indentation : float
+        ``P`` (N) or ``d`` (m), exactly one.
+
+    Raises
+    ------
+    FrictionNotConverged, LoadingUnreachable, ContactAtEdge, ValueError
+    """
+    if not (math.isfinite(speed) and speed > 0):
+        raise ValueError(f"speed must be > 0 m/s for rolling or sliding with friction, got {speed!r}")
+    g = ops.grid
+    shape, size = g.shape, g.nodes_x * g.nodes_y
+    s = np.asarray(profile, float).ravel()
+    arm, ell = np.asarray(arm, float).ravel(), np.asarray(ell, float).ravel()
+    reach = np.isfinite(s)
+    mu, mode, V = friction.mu, friction.mode, speed
+    normal = solve_normal(ops.op("ww"), profile, load=load, indentation=indentation)
+    N0 = normal.force.ravel()
+    cons = _constraint(mode, arm, ell, radius)
+    omega_free = friction.omega is None
+    if cons is not None and mode != "towed":
+        need = abs(float(cons[0] @ N0))
+        can = mu * float(np.abs(cons[1]) @ N0)
+        if can < need:
+            raise LoadingUnreachable(
+                f"mode {mode!r} needs tangential forces beyond the friction limit: mu = {mu} "
+                f"can give a moment/force of {can:.4g}, the rolling resistance asks for {need:.4g} "
+                f"(in units of N{' m' if mode == 'pushed_at_top' else ''}); raise mu or use mode "
+                "'towed' or 'omega'")
+    if mu == 0:
+        return _finish(ops, s, arm, ell, V, friction, N0, np.zeros(size), np.zeros(size),
+                       normal.indentation, friction.omega if friction.omega is not None else math.nan,
+                       np.zeros(size, bool), (), "dense", 0, radius)
+
+    contact = N0 > 0
+    stick = contact.copy()
+    e_full = np.zeros((size, 2))
+    if not omega_free:  # nodes whose rigid creep is large start in slip along it
+        creep = V - friction.omega * ell
+        start_slip = contact & (np.abs(creep) > 1e-2 * V)
+        stick &= ~start_slip
+        e_full[start_slip, 0] = np.sign(creep[start_slip])
+    k_full = np.zeros(size)
+    seen: dict = {}
+    careful = False
+    history = []
+    wx = wy = np.zeros(size)
+    for it in range(1, friction.max_iter + 1):
+        C = np.flatnonzero(contact)
+        if omega_free and not (stick & contact).any():  # Omega needs one stick node at least
+            Sl = np.flatnonzero(contact)
+            stick[Sl[np.argmin(np.hypot(wx[Sl], wy[Sl]))]] = True
+        N, Sx, Sy, d, om = _solve_sets(ops, s, C, stick, e_full, k_full, mu, ell, V, load, indentation,
+                                       friction.omega, cons)
+        delta, ex, ey = (f.ravel() for f in ops.fields(N.reshape(shape), Sx.reshape(shape), Sy.reshape(shape)))
+        h = np.where(reach, s - d + delta, np.inf)
+        wx, wy = V * (1 + ex) - om * ell, V * ey
+        scale = max(abs(d), 1e-300)
+        drop = contact & (N <= 0)
+        add = ~contact & (h < -1e-12 * scale)
+        smag = np.hypot(Sx, Sy)
+        wmag = np.hypot(wx, wy)
+        slip = contact & ~stick & ~drop
+        to_slip = contact & stick & ~drop & (smag > mu * N * (1 + 1e-10))
+        wdot = wx * Sx + wy * Sy
+        to_stick = slip & (wdot <= 0)
+        slip &= ~to_stick
+        with np.errstate(invalid="ignore", divide="ignore"):
+            mis_mag = np.abs(smag - mu * N)[slip] / (mu * N[slip])
+            mis_dir = np.abs(Sx * wy - Sy * wx)[slip] / (smag * wmag)[slip]
+        misfit = float(max(mis_mag.max(initial=0.0), mis_dir.max(initial=0.0)))
+        history.append((int(C.size), int((stick & contact).sum()), misfit, om))
+        if progress:
+            progress(f"friction {it}: {C.size} contact, {int((stick & contact).sum())} stick, "
+                     f"Omega = {om:.8g} rad/s, -{int(drop.sum())} +{int(add.sum())} contact, "
+                     f"+{int(to_slip.sum())} slip, +{int(to_stick.sum())} stick, slip misfit {misfit:.2e}")
+        changes = drop.any() or add.any() or to_slip.any() or to_stick.any()
+        if not changes and misfit <= friction.direction_tol:
+            break
+        if careful and changes:  # one node at a time, the worst violation first
+            new_c, new_s = contact.copy(), stick.copy()
+            if drop.any():
+                new_c[np.argmin(np.where(drop, N, np.inf))] = False
+            elif add.any():
+                j = np.argmin(np.where(add, h, np.inf))
+                new_c[j] = new_s[j] = True
+            elif to_slip.any():
+                new_s[np.argmax(np.where(to_slip, smag - mu * N, -np.inf))] = False
+            else:
+                new_s[np.argmin(np.where(to_stick, wdot, np.inf))] = True
+        else:
+            new_c = (contact & ~drop) | add
+            new_s = ((stick & ~to_slip) | to_stick | add) & new_c
+        new_slip = new_c & ~new_s
+        with np.errstate(invalid="ignore", divide="ignore"):
+            e_new = np.stack([Sx, Sy], 1) / smag[:, None]
+            # k = (e . w) / |S|, floored at 1e-3 V / (mu N): a new or barely slipping node
+            # keeps its force near e instead of a free perpendicular component
+            k_new = np.maximum(np.where(slip, np.maximum(wdot, 0.0) / smag**2, 0.0), 1e-3 * V / (mu * N))
+        e_full = np.where(new_slip[:, None] & (smag[:, None] > 0), e_new, 0.0)
+        k_full = np.where(new_slip, np.nan_to_num(k_new), 0.0)
+        key = np.packbits(np.concatenate([new_c, new_s])).tobytes()
+        if changes and misfit <= friction.set_tol:  # cycles count once the slip law has settled
+            seen[key] = seen.get(key, 0) + 1
+            if seen[key] > 2:
+                if careful:
+                    # a two-state cycle at the stick/slip border: accept the state when its
+                    # violations are below the set tolerance (recorded in the residuals)
+                    with np.errstate(invalid="ignore", divide="ignore"):
+                        over = float(np.nan_to_num(smag / (mu * N) - 1)[contact & stick].max(initial=0.0))
+                        back = float(np.nan_to_num(-wdot / (smag * V))[contact & ~stick].max(initial=0.0))
+                    gap_v = max(float((-h[add]).max(initial=0.0)) / scale,
+                                float((-N[drop]).max(initial=0.0)) / float(N.max()))
+                    if gap_v <= 1e-2 * friction.set_tol and max(over, back, misfit) <= friction.set_tol:
+                        break
+                    raise FrictionNotConverged(
+                        f"the stick/slip sets cycle after {it} iterations even with one-node updates "
+                        f"(cone excess {over:.2e}, reversed slip {back:.2e} V, slip misfit {misfit:.2e}, "
+                        f"contact violation {gap_v:.2e}, "
+                        f"set_tol {friction.set_tol})")
+                careful = True
+                seen.clear()
+        contact, stick = new_c, new_s
+        if not contact.any():
+            raise FrictionNotConverged("the contact set emptied")
+    else:
+        _unreachable_or_not_converged(friction, history)
+    if (contact & _edge_nodes(shape)).any():
+        raise ContactAtEdge("the contact reaches the edge of the candidate region: increase grid.half_width")
+    resid = (max(np.abs(h[contact]).max(initial=0.0), (-h[reach & ~contact]).max(initial=0.0)) / scale,)
+    return _finish(ops, s, arm, ell, V, friction, N, Sx, Sy, d, om, stick & contact, tuple(history),
+                   "dense", 0, radius, resid[0])
+
+
+def _unreachable_or_not_converged(friction, history):
+    if friction.mode in ("pushed_at_top", "torque") and history and history[-1][1] <= 1:
+        raise LoadingUnreachable(f"mode {friction.mode!r}: the whole contact slips and the equilibrium "
+                                 f"cannot be met with mu = {friction.mu}")
+    raise FrictionNotConverged(f"no converged stick/slip state in {friction.max_iter} iterations "
+                               f"(last direction change {history[-1][2]:.2e})")
+
+
+def _finish(ops, s, arm, ell, V, friction, N, Sx, Sy, d, om, stick, history, solver, lin_it, radius,
+            gap_resid=0.0) -> FrictionalContact:
+    g = ops.grid
+    shape = g.shape
+    N2, X2, Y2 = N.reshape(shape), Sx.reshape(shape), Sy.reshape(shape)
+    delta, ex, ey = ops.fields(N2, X2, Y2)
+    u, v = ops.displacements(N2, X2, Y2)
+    contact = N2 > 0
+    omega_eff = 0.0 if math.isnan(om) else om
+    wx = np.where(contact, V * (1 + ex) - omega_eff * ell.reshape(shape), 0.0)
+    wy = np.where(contact, V * ey, 0.0)
+    st = stick.reshape(shape)
+    wx[st] = wy[st] = 0.0  # exactly zero by the stick equations; clear round-off
+    stick_res = float(np.hypot(V * (1 + ex) - omega_eff * ell.reshape(shape), V * ey)[st].max(initial=0.0) / V)
+    mu = friction.mu
+    with np.errstate(invalid="ignore", divide="ignore"):
+        cone = np.hypot(X2, Y2)[st] / (mu * N2[st]) - 1 if mu > 0 else np.zeros(0)
+    coul = float(np.maximum(cone, 0).max(initial=0.0))
+    sl = contact & ~st
+    if mu > 0 and sl.any():
+        with np.errstate(invalid="ignore", divide="ignore"):
+            sm = np.hypot(X2, Y2)[sl]
+            mag = np.abs(sm / (mu * N2[sl]) - 1)
+            ang = 1 - (X2 * wx + Y2 * wy)[sl] / (sm * np.hypot(wx, wy)[sl])  # 0 when S || w
+        coul = max(coul, float(np.nan_to_num(mag, nan=1.0).max()), float(np.nan_to_num(ang, nan=1.0).max()))
+    Q = float((N * arm).sum() + Sx.sum())
+    T = float(-(ell * Sx).sum())
+    if friction.mode == "torque":
+        Q = 0.0 if mu > 0 else Q
+    rr = Q + (T * om / V if T != 0.0 else 0.0)
+    p_fric = float((X2 * wx + Y2 * wy).sum())
+    record = FrictionRecord(len(history), history, solver, lin_it, gap_resid, stick_res, coul)
+    return FrictionalContact(
+        g, N2, X2, Y2, delta, u, v, s.reshape(shape) - d + delta, wx, wy, st, float(d), float(N.sum()),
+        float(om), Q, T, rr, p_fric / V, rr - p_fric / V, V, mu, friction.mode, record)
+
+
+def solve_friction(problem: Problem, friction: Friction, progress: Callable[[str], None] | None = None,
+                   kernels: dict | None = None) -> tuple[FrictionalContact, dict]:
+    """Steady rolling/sliding of ``problem`` with Coulomb ``friction``.
+
+    Returns the result and the timings (s) of the nine kernels and of the solve. Pass
+    ``kernels`` (all nine blocks for this grid, layer and speed) to reuse them.
+    """
+    p = problem
+    t0 = time.perf_counter()
+    if kernels is None:
+        kernels = influence_kernels(p.grid, p.layer, p.loading.speed, blocks=BLOCKS)
+    ops = RollingOperators(p.grid, kernels)
+    t1 = time.perf_counter()
+    if progress:
+        progress(f"compliance (9 blocks): {p.grid.nodes_x} x {p.grid.nodes_y} nodes, "
+                 f"Nt = {p.grid.truncation_x} x {p.grid.truncation_y}, {t1 - t0:.2f} s")
+    X, Y = p.grid.coordinates()
+    R = indenter_radius(p.indenter, friction.radius)
+    res = solve_rolling(ops, p.indenter.profile(X, Y), p.indenter.rolling_arm(X, Y),
+                        rolling_radius(p.indenter, Y, friction.radius), R, p.loading.speed, friction,
+                        load=p.loading.load, indentation=p.loading.indentation, progress=progress)
+    t2 = time.perf_counter()
+    return res, {"kernel_s": t1 - t0, "solve_s": t2 - t1}
