@@ -15,6 +15,9 @@ from .materials import Elastic, MasterCurveTable, Prony, ThreeParameterSolid
 from .operator import ComplianceOperator
 from .problem import Loading, Problem, solve_frictionless
 from .spectral import influence_kernels, influence_kernels_direct
+from .friction import Friction, FrictionalContact, FrictionNotConverged, LoadingUnreachable
+from .rolling import solve_friction
+from .energy import viscous_dissipation
 
 __all__ = [
     "ComplianceOperator", "ContactAtEdge", "ContactError", "ContactNotConverged", "Cylinder",
@@ -22,4 +25,6 @@ __all__ = [
     "Paraboloid", "Problem", "Prony", "Sphere", "ThreeParameterSolid", "influence_kernels",
     "influence_kernels_direct", "solve_frictionless", "solve_normal", "surface_compliance",
     "surface_compliance_expm",
+    "Friction", "FrictionalContact", "FrictionNotConverged", "LoadingUnreachable", "solve_friction",
+    "viscous_dissipation",
 ]
