@@ -14,7 +14,7 @@ from .layer import Layer
 from .materials import material_from_config
 from .problem import Loading, Problem, auto_half_width
 
-__all__ = ["read_case", "apply_overrides", "problem_from_config"]
+__all__ = ["read_case", "apply_overrides", "problem_from_config", "friction_from_config"]
 
 _SECTIONS = {
     "layer": {"thickness", "density"},
@@ -23,7 +23,7 @@ _SECTIONS = {
     "loading": {"speed", "load", "indentation"},
     "grid": {"spacing", "spacing_x", "spacing_y", "period", "period_x", "period_y", "truncation",
              "truncation_x", "truncation_y", "half_width", "half_width_x", "half_width_y"},
-    "friction": None,  # later issues
+    "friction": {"mu", "mode", "omega", "radius", "max_iter", "direction_tol", "set_tol"},
     "fem": None,  # read by fem_reference only
 }
 
@@ -101,3 +101,15 @@ def problem_from_config(config: dict, base: Path = Path(".")) -> tuple[Problem, 
     hw_default = auto_half_width(layer, indenter, loading, max(spacing)) if auto else g.get("half_width")
     grid = Grid.centred(spacing, _pair(g, "period"), _pair(g, "truncation"), _pair(g, "half_width", hw_default))
     return Problem(layer, indenter, grid, loading), auto
+
+
+def friction_from_config(config: dict):
+    """The ``[friction]`` section as :class:`bem.friction.Friction`, or ``None`` if absent."""
+    from .friction import Friction
+
+    sec = config.get("friction")
+    if sec is None:
+        return None
+    if "mu" not in sec:
+        raise ValueError("[friction] needs mu (-)")
+    return Friction(**sec)

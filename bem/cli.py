@@ -9,7 +9,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .case import problem_from_config, read_case
+from .case import friction_from_config, problem_from_config, read_case
 from .contact import ContactError
 from .problem import solve_frictionless
 
@@ -43,6 +43,40 @@ def _summary(problem, result, timings) -> dict:
     }
 
 
+def _friction_summary(problem, result, timings) -> dict:
+    import math
+
+    r = result.record
+    num = lambda v: None if isinstance(v, float) and math.isnan(v) else v  # noqa: E731
+    out = {
+        "rolling_resistance": result.rolling_resistance,
+        "rolling_resistance_friction": result.rolling_resistance_friction,
+        "rolling_resistance_viscous": result.rolling_resistance_viscous,
+        "omega": num(result.omega),
+        "driving_force": result.driving_force,
+        "driving_torque": result.driving_torque,
+        "stick_fraction": num(result.stick_fraction),
+        "mu": result.mu,
+        "mode": result.mode,
+        "indentation": result.indentation,
+        "contact_radius": result.contact_radius,
+        "load": result.load,
+        "peak_pressure": result.peak_pressure,
+        "contact_area": result.contact_area,
+        "speed": result.speed,
+        "grid": {"nodes": [problem.grid.nodes_x, problem.grid.nodes_y]},
+        "solver": {
+            "iterations": r.iterations,
+            "gap_residual": r.gap_residual,
+            "stick_residual": r.stick_residual,
+            "coulomb_residual": r.coulomb_residual,
+            "history": [list(h) for h in r.history],
+        },
+        "timings_s": timings,
+    }
+    return out
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="bem", description=__doc__)
     sub = parser.add_subparsers(dest="command", required=True)
@@ -63,14 +97,20 @@ def main(argv: list[str] | None = None) -> int:
     try:
         config, base = read_case(args.case, args.set)
         problem, auto = problem_from_config(config, base)
-        result, timings = solve_frictionless(problem, progress=progress, grow=auto)
+        friction = friction_from_config(config)
+        if friction is None:
+            result, timings = solve_frictionless(problem, progress=progress, grow=auto)
+        else:
+            from .rolling import solve_friction
+
+            result, timings = solve_friction(problem, friction, progress=progress)
     except FileNotFoundError as exc:
         print(f"bem: {exc}", file=sys.stderr)
         return 2
     except (ValueError, TypeError, ContactError) as exc:
         print(f"bem: {type(exc).__name__}: {exc}", file=sys.stderr)
         return 2
-    summary = _summary(problem, result, timings)
+    summary = _summary(problem, result, timings) if friction is None else _friction_summary(problem, result, timings)
     if args.fields:
         args.fields.parent.mkdir(parents=True, exist_ok=True)
         np.savez_compressed(
