@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import math
 import tomllib
 from pathlib import Path
 
@@ -71,7 +70,9 @@ def _indenter(sec: dict, base: Path):
     if shape == "paraboloid":
         return Paraboloid(sec["radius"])
     if shape == "cylinder":
-        return Cylinder(sec["radius"], sec.get("length", math.inf))
+        if "length" not in sec:
+            raise ValueError("[indenter] shape = \"cylinder\" needs length (m), the roller's length along y")
+        return Cylinder(sec["radius"], sec["length"])
     raise ValueError(f"[indenter] shape must be sphere, paraboloid, cylinder or heightmap, got {shape!r}")
 
 
