@@ -41,7 +41,7 @@ from scipy.linalg import expm
 
 __all__ = [
     "Layer", "system_matrix", "surface_compliance", "surface_compliance_expm", "normal_compliance",
-    "normal_compliance_outer",
+    "normal_compliance_outer", "compliance_blocks",
 ]
 
 
@@ -340,6 +340,35 @@ def _mode_parts(nu_x, nu_y, G, rho_V2, H):
     return (k, *parts, tq / G)
 
 
+_ENTRY = {"ww": (0, 0), "wu": (0, 1), "wv": (0, 2), "uw": (1, 0), "uu": (1, 1), "uv": (1, 2),
+          "vw": (2, 0), "vu": (2, 1), "vv": (2, 2)}
+
+
+def compliance_blocks(nu_x, nu_y, G, rho_V2, H, blocks=tuple(_ENTRY)):
+    """Entries of :func:`surface_compliance` by name (``"ww"``, ``"wu"``, ... displacement
+    then traction direction), each an array of the broadcast shape (m/Pa); only the
+    requested ones are formed."""
+    nu_x, nu_y = np.broadcast_arrays(np.asarray(nu_x, float), np.asarray(nu_y, float))
+    k, c_zz, c_zL_k, c_Lz_k, c_LL, c_TT = _mode_parts(nu_x, nu_y, G, rho_V2, H)
+    nu_x, nu_y = np.broadcast_to(nu_x, k.shape), np.broadcast_to(nu_y, k.shape)
+    zero = k == 0
+    ks = np.where(zero, 1.0, k)
+    cx = np.where(zero, 1.0, nu_x / ks)  # at k = 0, c_LL = c_TT = H/G: any unit direction
+    sy = np.where(zero, 0.0, nu_y / ks)
+    make = {
+        "ww": lambda: c_zz,
+        "wu": lambda: c_zL_k * nu_x,
+        "wv": lambda: c_zL_k * nu_y,
+        "uw": lambda: c_Lz_k * nu_x,
+        "vw": lambda: c_Lz_k * nu_y,
+        "uu": lambda: cx * cx * c_LL + sy * sy * c_TT,
+        "vv": lambda: sy * sy * c_LL + cx * cx * c_TT,
+        "uv": lambda: cx * sy * (c_LL - c_TT),
+        "vu": lambda: cx * sy * (c_LL - c_TT),
+    }
+    return {b: make[b]() for b in blocks}
+
+
 def surface_compliance(nu_x, nu_y, G, rho_V2, H):
     """Closed-form surface compliance ``T12 T22^-1`` of eq. 50, all nine entries.
 
@@ -360,22 +389,10 @@ def surface_compliance(nu_x, nu_y, G, rho_V2, H):
         ``(w, u, v) = C (sigma_z, tau_xz, tau_yz)``, in m/Pa; ``sigma_z`` positive in
         tension, ``w`` positive upwards (away from the base).
     """
-    nu_x, nu_y = np.broadcast_arrays(np.asarray(nu_x, float), np.asarray(nu_y, float))
-    k, c_zz, c_zL_k, c_Lz_k, c_LL, c_TT = _mode_parts(nu_x, nu_y, G, rho_V2, H)
-    nu_x, nu_y = np.broadcast_to(nu_x, k.shape), np.broadcast_to(nu_y, k.shape)
-    zero = k == 0
-    ks = np.where(zero, 1.0, k)
-    cx = np.where(zero, 1.0, nu_x / ks)  # at k = 0, c_LL = c_TT = H/G: any unit direction
-    sy = np.where(zero, 0.0, nu_y / ks)
-    C = np.empty(k.shape + (3, 3), dtype=complex)
-    C[..., 0, 0] = c_zz
-    C[..., 0, 1] = c_zL_k * nu_x
-    C[..., 0, 2] = c_zL_k * nu_y
-    C[..., 1, 0] = c_Lz_k * nu_x
-    C[..., 2, 0] = c_Lz_k * nu_y
-    C[..., 1, 1] = cx * cx * c_LL + sy * sy * c_TT
-    C[..., 2, 2] = sy * sy * c_LL + cx * cx * c_TT
-    C[..., 1, 2] = C[..., 2, 1] = cx * sy * (c_LL - c_TT)
+    parts = compliance_blocks(nu_x, nu_y, G, rho_V2, H)
+    C = np.empty(parts["ww"].shape + (3, 3), dtype=complex)
+    for name, (i, j) in _ENTRY.items():
+        C[..., i, j] = parts[name]
     return C
 
 

@@ -29,7 +29,7 @@ import numpy as np
 import scipy.fft as sfft
 
 from .grid import Grid
-from .layer import Layer, normal_compliance_outer, surface_compliance
+from .layer import Layer, compliance_blocks, normal_compliance_outer, surface_compliance
 
 __all__ = ["BLOCKS", "influence_kernels", "influence_kernels_direct", "mode_symbols"]
 
@@ -70,9 +70,9 @@ def mode_symbols(grid: Grid, layer: Layer, speed: float, blocks=("ww",)) -> dict
         if blocks == ("ww",):
             out["ww"][s] = normal_compliance_outer(nu_x[s], nu_y, G[s], rho_V2, layer.thickness) * weight[s]
             return
-        C = surface_compliance(nu_x[s, None], nu_y[None, :], G[s, None], rho_V2, layer.thickness)
+        parts = compliance_blocks(nu_x[s, None], nu_y[None, :], G[s, None], rho_V2, layer.thickness, blocks)
         for b in blocks:
-            out[b][s] = C[..., BLOCKS[b][0], BLOCKS[b][1]] * weight[s]
+            out[b][s] = parts[b] * weight[s]
 
     starts = range(0, m.size, _CHUNK)
     with ThreadPoolExecutor(max_workers=min(2, os.cpu_count() or 1)) as pool:
