@@ -105,12 +105,13 @@ def solve_frictionless(
                 progress=progress,
             )
         except ContactAtEdge:
-            if not grow:
-                raise
             g = p.grid
+            cap = 0.95 * getattr(p.indenter, "radius", math.inf)  # the region stays under the indenter
+            if not grow or max(g.x[-1], g.y[-1]) >= 0.9 * cap:
+                raise
             bigger = Grid.centred(
                 (g.spacing_x, g.spacing_y), (g.period_x, g.period_y),
-                (g.truncation_x, g.truncation_y), (1.5 * g.x[-1], 1.5 * g.y[-1]),
+                (g.truncation_x, g.truncation_y), (min(1.5 * g.x[-1], cap), min(1.5 * g.y[-1], cap)),
             )
             if progress:
                 progress(f"contact reached the region's edge: widening to |x| <= {bigger.x[-1]:.4g} m")

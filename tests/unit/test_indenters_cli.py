@@ -61,3 +61,31 @@ def test_cli_reports_bad_input(capsys):
     code = main(["solve", "examples/paper-section11-frictionless.toml", "--quiet", "--set", "grid.half_width=2e-3"])
     assert code == 2
     assert "increase grid.half_width" in capsys.readouterr().err
+
+
+def test_automatic_region_is_sized(tmp_path, capsys):
+    """Without grid.half_width the region comes from an elastic estimate (Table 1,
+    a = 1 mm, Nt = 500)."""
+    text = open("examples/paper-section11-frictionless.toml").read().replace("half_width = 5.0e-3", "")
+    case = tmp_path / "auto.toml"
+    case.write_text(text)
+    code = main(["solve", str(case), "--json", "--quiet", "--set", "grid.spacing=1e-3", "--set", "grid.truncation=500"])
+    assert code == 0
+    assert abs(json.loads(capsys.readouterr().out)["rolling_resistance"] - 3.1129) < 1e-4
+
+
+def test_a_region_too_small_grows_when_automatic():
+    """grow=True widens a region the contact reaches by half until it fits, and gives the
+    answer of a large enough region; without it the edge contact is an error."""
+    from bem import Sphere, ThreeParameterSolid
+    from bem.contact import ContactAtEdge
+
+    layer = Layer(5e-3, ThreeParameterSolid(3.0e6, 0.25, 1.0), 1000.0)
+    small = Grid.centred((1e-3, 1e-3), (0.2, 0.2), (500, 500), (3e-3, 3e-3))
+    problem = Problem(layer, Sphere(0.02), small, Loading(0.05, load=150.0))
+    lines = []
+    grown, _ = solve_frictionless(problem, progress=lines.append, grow=True)
+    assert any("widening" in line for line in lines)
+    assert abs(grown.rolling_resistance - 3.1129) < 1e-4
+    with pytest.raises(ContactAtEdge):
+        solve_frictionless(problem)
