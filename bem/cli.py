@@ -52,6 +52,7 @@ def _friction_summary(problem, result, timings) -> dict:
         "rolling_resistance": result.rolling_resistance,
         "rolling_resistance_friction": result.rolling_resistance_friction,
         "rolling_resistance_viscous": result.rolling_resistance_viscous,
+        "rolling_resistance_energy": num(result.rolling_resistance_energy),
         "omega": num(result.omega),
         "driving_force": result.driving_force,
         "driving_torque": result.driving_torque,

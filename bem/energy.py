@@ -19,6 +19,11 @@ of ``C_mn``, the loss, contributes: an elastic layer (with or without inertia) d
 nothing. The traction of a nodal force spread on its patch (eq. 52) has the coefficients
 of eqs. 56-59. This is independent of the contact solver's nodal collocation and of the
 upwind derivative: it integrates the layer's own continuous fields.
+
+Cost: the isotropic layer is symmetric under ``y -> -y``, so
+``C(nu_x, -nu_y) = D C(nu_x, nu_y) D`` with ``D = diag(1, 1, -1)`` (``v`` and ``tau_yz``
+change sign; checked to round-off against the closed form); the compliance is evaluated
+for ``n >= 0`` only and serves both halves.
 """
 
 from __future__ import annotations
@@ -51,20 +56,25 @@ def viscous_dissipation(grid: Grid, layer: Layer, speed: float, force_z: np.ndar
     g = grid
     F = [np.asarray(f, float).reshape(g.shape) for f in (force_z, force_x, force_y)]
     m = np.arange(1, g.truncation_x + 1)
-    n = np.arange(-g.truncation_y, g.truncation_y + 1)
+    n = np.arange(0, g.truncation_y + 1)
     nu_x = 2 * np.pi * m / g.period_x
     nu_y = 2 * np.pi * n / g.period_y
     G = np.asarray(layer.material.modulus(-nu_x * speed), dtype=complex)
     wx = np.sinc(m * g.spacing_x / g.period_x) / g.period_x
     wy = np.sinc(n * g.spacing_y / g.period_y) / g.period_y
-    ey = np.exp(-1j * np.outer(g.y, nu_y)) * wy  # (K_y, n)
+    e_pos = np.exp(-1j * np.outer(g.y, nu_y)) * wy  # (K_y, n), n >= 0
+    e_neg = np.exp(1j * np.outer(g.y, nu_y[1:])) * wy[1:]  # (K_y, n), -n < 0
+    flip = np.array([1.0, 1.0, -1.0])  # D = diag(1, 1, -1)
     total = 0.0
     for s in range(0, m.size, _CHUNK):
         sl = slice(s, s + _CHUNK)
         ex = np.exp(-1j * np.outer(nu_x[sl], g.x)) * wx[sl, None]  # (m, K_x)
-        t = np.stack([ex @ f.T @ ey for f in F], axis=-1)  # (m, n, 3): traction coefficients
+        rows = [ex @ f.T for f in F]
+        t = np.stack([r @ e_pos for r in rows], axis=-1)  # (m, n >= 0, 3)
+        tn = np.stack([r @ e_neg for r in rows], axis=-1) * flip  # D t at (m, -n), n >= 1
         C = surface_compliance(nu_x[sl, None], nu_y[None, :], G[sl, None],
                                layer.density * speed**2, layer.thickness)
         quad = np.einsum("mni,mnij,mnj->mn", t.conj(), C, t)
-        total += float((nu_x[sl, None] * quad.imag).sum())
+        quad_n = np.einsum("mni,mnij,mnj->mn", tn.conj(), C[:, 1:], tn)
+        total += float((nu_x[sl, None] * quad.imag).sum() + (nu_x[sl, None] * quad_n.imag).sum())
     return 2 * speed * g.period_x * g.period_y * total

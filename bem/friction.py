@@ -165,7 +165,18 @@ class FrictionalContact:
     indentation, load, omega, driving_force, driving_torque : float
         ``d`` (m), ``P`` (N), ``Omega`` (rad/s), ``Q`` (N), ``T`` (N m, about the centre).
     rolling_resistance, rolling_resistance_friction, rolling_resistance_viscous : float
-        ``R_r`` (eq. 1), ``R_r^F`` (eq. 2), ``R_r^V = R_r - R_r^F`` (eq. 3), in N.
+        ``R_r`` (eq. 1), ``R_r^F`` (eq. 2), ``R_r^V = R_r - R_r^F`` (eq. 3), in N. ``R_r``
+        is the equilibrium figure (eq. 63, ``Q + T Omega / V`` with the arm ``x / R``).
+    rolling_resistance_energy : float
+        The energy figure ``(P_visc + P_fric) / V`` (N): the layer's dissipation computed
+        independently from its loss modulus (:func:`bem.energy.viscous_dissipation`) plus
+        the friction power ``sum S . w``; ``nan`` when not computed. For a paraboloid the
+        two figures agree to the discretisation error (0.3 % at ``a = 0.25`` mm in the
+        paper's section 11). For the exact sphere (eq. 13) they differ by
+        ``sum N x (1/zeta - 1/R)`` with ``zeta = sqrt(R^2 - r^2)``: the sphere's surface
+        slope ``x / zeta`` does work on the layer, the paper's frictionless arm ``x / R``
+        (sec. 9) enters the equilibrium; about ``r^2 / 2R^2`` of ``R_r`` (1.3 % in section
+        11: ``R_r`` = 3.035 N, energy 3.074 N, the paper's 3.07 N).
     speed, mu : float
         ``V`` (m/s), ``mu`` (-).
     mode : str
@@ -195,6 +206,7 @@ class FrictionalContact:
     mu: float
     mode: str
     record: FrictionRecord
+    rolling_resistance_energy: float = math.nan
 
     @property
     def contact(self) -> np.ndarray:
