@@ -86,7 +86,8 @@ def main(argv: list[str] | None = None) -> int:
     s.add_argument("--set", action="append", default=[], metavar="SECTION.KEY=VALUE",
                    help="override an entry of the case file (value parsed as TOML)")
     s.add_argument("--json", action="store_true", help="print one JSON object on stdout")
-    s.add_argument("--plot", type=Path, help="write the pressure map and y = 0 profile (PNG)")
+    s.add_argument("--plot", type=Path, help="write the pressure map and y = 0 profile, or with friction the pressure "
+                   "map, tangential traction vectors and stick/slip map (PNG)")
     s.add_argument("--fields", type=Path, help="save nodal coordinates and fields (NPZ)")
     s.add_argument("--quiet", action="store_true", help="no progress lines on stderr")
     args = parser.parse_args(argv)
@@ -114,15 +115,19 @@ def main(argv: list[str] | None = None) -> int:
     summary = _summary(problem, result, timings) if friction is None else _friction_summary(problem, result, timings)
     if args.fields:
         args.fields.parent.mkdir(parents=True, exist_ok=True)
+        extra = {} if friction is None else {
+            "force_x": result.force_x, "force_y": result.force_y, "stick": result.stick,
+            "slip_x": result.slip_x, "slip_y": result.slip_y,
+            "displacement_x": result.displacement_x, "displacement_y": result.displacement_y}
         np.savez_compressed(
             args.fields, x=result.grid.x, y=result.grid.y, force=result.force,
             pressure=result.pressure, deflection=result.deflection, gap=result.gap,
-            contact=result.contact, summary=json.dumps(summary),
+            contact=result.contact, summary=json.dumps(summary), **extra,
         )
     if args.plot:
-        from .plots import plot_normal_contact
+        from .plots import plot_frictional_contact, plot_normal_contact
 
-        plot_normal_contact(result, args.plot)
+        (plot_normal_contact if friction is None else plot_frictional_contact)(result, args.plot)
         progress(f"wrote {args.plot}")
     if args.json:
         print(json.dumps(summary, indent=2))
@@ -132,6 +137,14 @@ def main(argv: list[str] | None = None) -> int:
         print(f"contact radius      {result.contact_radius:.6g} m (equivalent, sqrt(area/pi))")
         print(f"load                {result.load:.6g} N")
         print(f"peak pressure       {result.peak_pressure:.6g} Pa")
+        if friction is not None:
+            print(f"  friction part     {result.rolling_resistance_friction:.6g} N")
+            print(f"  viscous part      {result.rolling_resistance_viscous:.6g} N")
+            print(f"energy figure       {result.rolling_resistance_energy:.6g} N ((P_visc + P_fric) / V)")
+            print(f"omega               {result.omega:.6g} rad/s")
+            print(f"driving force       {result.driving_force:.6g} N")
+            print(f"driving torque      {result.driving_torque:.6g} N m")
+            print(f"stick fraction      {result.stick_fraction:.4g}")
     return 0
 
 

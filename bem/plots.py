@@ -6,7 +6,7 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["plot_normal_contact"]
+__all__ = ["plot_normal_contact", "plot_frictional_contact"]
 
 
 def plot_normal_contact(result, path: str | Path, title: str = "") -> Path:
@@ -39,5 +39,77 @@ def plot_normal_contact(result, path: str | Path, title: str = "") -> Path:
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(path, dpi=120)
+    plt.close(fig)
+    return path
+
+
+def plot_frictional_contact(result, path: str | Path, title: str = "", max_arrows: int = 24) -> Path:
+    """Pressure map, tangential traction vectors and stick/slip map of a
+    :class:`bem.friction.FrictionalContact`, side by side; returns the path.
+
+    The vectors are the tractions ``(tau_xz, tau_yz)`` on the layer (Pa) at the contact
+    nodes, subsampled to at most ``max_arrows`` per direction, over the contour of the
+    contact; the map colours the nodes out of contact, in stick and in slip, with the slip
+    velocity's direction drawn on the slip nodes.
+    """
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from matplotlib.colors import ListedColormap
+
+    g = result.grid
+    x_mm, y_mm = g.x * 1e3, g.y * 1e3
+    X, Y = np.meshgrid(x_mm, y_mm)
+    contact = result.contact
+    fig, axes = plt.subplots(1, 3, figsize=(16, 4.8), constrained_layout=True)
+    ax0, ax1, ax2 = axes
+    mesh = ax0.pcolormesh(x_mm, y_mm, result.pressure / 1e6, shading="nearest", cmap="viridis")
+    fig.colorbar(mesh, ax=ax0, label="contact pressure (MPa)")
+    ax0.set_title("pressure")
+
+    rows = np.flatnonzero(contact.any(axis=1))
+    cols = np.flatnonzero(contact.any(axis=0))
+    step = max(1, int(np.ceil(max(rows.size, cols.size, 1) / max_arrows)))
+    sub = np.zeros_like(contact)
+    sub[::step, ::step] = True
+    sub &= contact
+    tx, ty = result.traction_x / 1e6, result.traction_y / 1e6
+    mag = np.hypot(tx, ty)
+    mesh1 = ax1.pcolormesh(x_mm, y_mm, np.where(contact, mag, np.nan), shading="nearest", cmap="magma")
+    fig.colorbar(mesh1, ax=ax1, label="|tangential traction| (MPa)")
+    if sub.any():
+        ax1.quiver(X[sub], Y[sub], tx[sub], ty[sub], color="c", angles="xy", pivot="middle")
+    ax1.set_title("tangential traction on the layer")
+
+    state = np.where(contact, np.where(result.stick, 1, 2), 0)
+    ax2.pcolormesh(x_mm, y_mm, state, shading="nearest",
+                   cmap=ListedColormap(["#eeeeee", "#4c72b0", "#dd8452"]), vmin=-0.5, vmax=2.5)
+    slip = sub & result.slip
+    if slip.any():
+        ax2.quiver(X[slip], Y[slip], result.slip_x[slip], result.slip_y[slip], color="k",
+                   angles="xy", pivot="middle")
+    from matplotlib.patches import Patch
+
+    ax2.legend(handles=[Patch(color="#4c72b0", label=f"stick ({result.stick_fraction:.1%})"),
+                        Patch(color="#dd8452", label="slip (arrows: slip velocity)")],
+               loc="upper right", fontsize=8)
+    ax2.set_title("stick / slip")
+    for ax in axes:
+        if contact.any():
+            ax.contour(x_mm, y_mm, contact.astype(float), levels=[0.5], colors="w" if ax is ax0 else "k",
+                       linewidths=0.8)
+        ax.set_aspect("equal")
+        ax.set_xlabel("x (mm), direction of motion ->")
+        ax.set_ylabel("y (mm)")
+    om = result.omega
+    fig.suptitle(title or (
+        f"P = {result.load:.4g} N, mu = {result.mu:g}, {result.mode}: R_r = {result.rolling_resistance:.5g} N "
+        f"(friction {result.rolling_resistance_friction:.3g} N), Omega = {om:.5g} rad/s, "
+        f"Q = {result.driving_force:.4g} N, T = {result.driving_torque:.4g} N m"
+    ))
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=110)
     plt.close(fig)
     return path
