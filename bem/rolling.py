@@ -24,6 +24,16 @@ parameter ``c`` (whose good value depends on the non-symmetric, badly scaled com
 ends on an exact complementarity state, each step is one linear solve the size of the
 contact, and it typically needs 5-20 steps here because slip zones are small; a recurring
 set state (a cycle) switches to one-node updates and then raises.
+
+Robustness. With ``Omega`` prescribed, nodes whose rigid creep ``|V - Omega l|`` exceeds
+1 % of ``V`` start (and join the contact) in slip along it with the slip law's own
+linearisation ``k = |w| / (mu N)`` (pure sliding then converges in 2-5 steps at any
+``mu``). If a cycle of one-node updates cannot be accepted, a node that left the contact
+and comes back joins in slip from then on. When the direct
+solve of a free-``Omega`` mode fails (typically towed with a tiny ``mu``, where one stick
+node must sit where the slip reverses), a continuation in ``mu`` halves ``mu`` from about
+0.2 down to the requested value, each solve starting from the previous state; if that
+fails too, :class:`FrictionNotConverged` says where it stopped.
 """
 
 from __future__ import annotations
@@ -227,15 +237,51 @@ def solve_rolling(ops: RollingOperators, profile, arm, ell, radius: float, speed
                        normal.indentation, friction.omega if friction.omega is not None else math.nan,
                        np.zeros(size, bool), (), "dense", 0, radius)
 
+    start = _start_state(N0, ell, V, friction)
+    try:
+        N, Sx, Sy, d, om, state, history, h, scale = _active_set(
+            ops, s, reach, ell, V, friction, load, indentation, cons, start, progress)
+    except LoadingUnreachable:
+        raise
+    except FrictionNotConverged as exc:
+        if mode == "omega":
+            raise
+        N, Sx, Sy, d, om, state, history, h, scale = _continuation(
+            ops, s, reach, ell, V, friction, load, indentation, cons, N0, progress, exc)
+    contact, stick = state[0], state[1]
+    resid = (max(np.abs(h[contact]).max(initial=0.0), (-h[reach & ~contact]).max(initial=0.0)) / scale,)
+    return _finish(ops, s, arm, ell, V, friction, N, Sx, Sy, d, om, stick & contact, tuple(history),
+                   "dense", 0, radius, resid[0])
+
+
+def _start_state(N0, ell, V, friction):
+    """Initial sets: the frictionless contact, all in stick except (``Omega`` given) the
+    nodes whose rigid creep exceeds 1 % of ``V``, which slip along it with the slip law's
+    own linearisation ``k = |w| / |S| = |creep| / (mu N)`` (with ``k = 0`` the slip rows
+    would force ``w`` along ``e`` with a free perpendicular force, which at small ``mu``
+    is orders of magnitude above ``mu N`` and sends the iteration astray)."""
     contact = N0 > 0
     stick = contact.copy()
-    e_full = np.zeros((size, 2))
-    if not omega_free:  # nodes whose rigid creep is large start in slip along it
+    e_full = np.zeros((N0.size, 2))
+    k_full = np.zeros(N0.size)
+    if friction.omega is not None:
         creep = V - friction.omega * ell
         start_slip = contact & (np.abs(creep) > 1e-2 * V)
         stick &= ~start_slip
         e_full[start_slip, 0] = np.sign(creep[start_slip])
-    k_full = np.zeros(size)
+        k_full[start_slip] = np.abs(creep[start_slip]) / (friction.mu * N0[start_slip])
+    return contact, stick, e_full, k_full
+
+
+def _active_set(ops, s, reach, ell, V, friction, load, indentation, cons, start, progress):
+    """Kalker's active-set iteration from the sets ``start = (contact, stick, e, k)``;
+    returns the forces, ``d``, ``Omega``, the final sets, the history and the gap."""
+    g = ops.grid
+    shape, size = g.shape, g.nodes_x * g.nodes_y
+    mu, omega_free = friction.mu, friction.omega is None
+    contact, stick, e_full, k_full = (np.array(a, copy=True) for a in start)
+    dropped = np.zeros(size, bool)
+    reentry = False
     seen: dict = {}
     careful = False
     history = []
@@ -270,6 +316,16 @@ def solve_rolling(ops: RollingOperators, profile, arm, ell, radius: float, speed
                      f"Omega = {om:.8g} rad/s, -{int(drop.sum())} +{int(add.sum())} contact, "
                      f"+{int(to_slip.sum())} slip, +{int(to_stick.sum())} stick, slip misfit {misfit:.2e}")
         changes = drop.any() or add.any() or to_slip.any() or to_stick.any()
+        # with Omega prescribed, a node joining the contact where the rigid creep
+        # |V - Omega l| exceeds 1 % of V slips (as in the start state: sliding, braking);
+        # otherwise material enters the contact in stick, as in free rolling
+        join_slip = add & (wmag > 0) & (not omega_free) & (np.abs(V - om * ell) > 1e-2 * V)
+        # if a cycle of one-node updates cannot be accepted, a node that left the contact
+        # (in stick, pulled into tension by its tangential force) and comes back joins in
+        # slip: stick there has no discrete solution
+        if reentry:
+            join_slip |= add & (wmag > 0) & dropped
+        dropped |= drop
         if not changes and misfit <= friction.direction_tol:
             break
         if careful and changes:  # one node at a time, the worst violation first
@@ -278,24 +334,31 @@ def solve_rolling(ops: RollingOperators, profile, arm, ell, radius: float, speed
                 new_c[np.argmin(np.where(drop, N, np.inf))] = False
             elif add.any():
                 j = np.argmin(np.where(add, h, np.inf))
-                new_c[j] = new_s[j] = True
+                new_c[j] = True
+                new_s[j] = not join_slip[j]
             elif to_slip.any():
                 new_s[np.argmax(np.where(to_slip, smag - mu * N, -np.inf))] = False
             else:
                 new_s[np.argmin(np.where(to_stick, wdot, np.inf))] = True
         else:
             new_c = (contact & ~drop) | add
-            new_s = ((stick & ~to_slip) | to_stick | add) & new_c
+            new_s = ((stick & ~to_slip) | to_stick | (add & ~join_slip)) & new_c
         new_slip = new_c & ~new_s
         with np.errstate(invalid="ignore", divide="ignore"):
             e_new = np.stack([Sx, Sy], 1) / smag[:, None]
             # k = (e . w) / |S|, floored at 1e-3 V / (mu N): a new or barely slipping node
             # keeps its force near e instead of a free perpendicular component
             k_new = np.maximum(np.where(slip, np.maximum(wdot, 0.0) / smag**2, 0.0), 1e-3 * V / (mu * N))
-        e_full = np.where(new_slip[:, None] & (smag[:, None] > 0), e_new, 0.0)
+            # such a node joins in slip along w, k = |w| / (mu N), N the smallest contact force
+            joining = new_slip & add
+            e_new[joining] = np.stack([wx, wy], 1)[joining] / wmag[joining, None]
+            n_ref = float(N[contact & (N > 0)].min(initial=np.inf))
+            k_new[joining] = wmag[joining] / (mu * n_ref)
+        e_full = np.where(new_slip[:, None] & ((smag[:, None] > 0) | joining[:, None]), e_new, 0.0)
         k_full = np.where(new_slip, np.nan_to_num(k_new), 0.0)
         key = np.packbits(np.concatenate([new_c, new_s])).tobytes()
-        if changes and misfit <= friction.set_tol:  # cycles count once the slip law has settled
+        # cycles count once the slip law has settled, or when the contact set itself cycles
+        if changes and (misfit <= friction.set_tol or drop.any() or add.any()):
             seen[key] = seen.get(key, 0) + 1
             if seen[key] > 2:
                 if careful:
@@ -308,6 +371,11 @@ def solve_rolling(ops: RollingOperators, profile, arm, ell, radius: float, speed
                                 float((-N[drop]).max(initial=0.0)) / float(N.max()))
                     if gap_v <= 1e-2 * friction.set_tol and max(over, back, misfit) <= friction.set_tol:
                         break
+                    if not reentry:  # last resort: returning nodes join in slip
+                        reentry = True
+                        seen.clear()
+                        contact, stick = new_c, new_s
+                        continue
                     raise FrictionNotConverged(
                         f"the stick/slip sets cycle after {it} iterations even with one-node updates "
                         f"(cone excess {over:.2e}, reversed slip {back:.2e} V, slip misfit {misfit:.2e}, "
@@ -322,9 +390,38 @@ def solve_rolling(ops: RollingOperators, profile, arm, ell, radius: float, speed
         _unreachable_or_not_converged(friction, history)
     if (contact & _edge_nodes(shape)).any():
         raise ContactAtEdge("the contact reaches the edge of the candidate region: increase grid.half_width")
-    resid = (max(np.abs(h[contact]).max(initial=0.0), (-h[reach & ~contact]).max(initial=0.0)) / scale,)
-    return _finish(ops, s, arm, ell, V, friction, N, Sx, Sy, d, om, stick & contact, tuple(history),
-                   "dense", 0, radius, resid[0])
+    return N, Sx, Sy, d, om, (contact, stick, e_full, k_full), history, h, scale
+
+
+def _continuation(ops, s, reach, ell, V, friction, load, indentation, cons, N0, progress, cause):
+    """Continuation in ``mu`` after a failed direct solve (loading modes with a free
+    ``Omega``): solve at ``mu 2^K`` (``K >= 1``, the smallest with ``mu 2^K >= 0.2``, where
+    a stick zone carries the moment), then halve ``mu`` down to the requested value,
+    each solve starting from the previous sets and slip directions. At small ``mu`` the
+    contact slips almost everywhere and the moment balance is met by one or a few stick
+    nodes near the point where the slip reverses; the direct start (all stick) reaches
+    the wrong ones and cycles, the continuation moves them there one step at a time.
+    Raises :class:`FrictionNotConverged` naming the ``mu`` at which it stopped.
+    """
+    mu = friction.mu
+    K = max(1, math.ceil(math.log2(0.2 / mu))) if mu < 0.2 else 1
+    ladder = [mu * 2.0**j for j in range(K, -1, -1)]
+    if progress:
+        progress(f"friction: direct solve failed ({cause}); continuation in mu from {ladder[0]:.4g}")
+    state = _start_state(N0, ell, V, friction)
+    history: list = []
+    for m in ladder:
+        step = replace(friction, mu=m)
+        try:
+            N, Sx, Sy, d, om, state, hist, h, scale = _active_set(
+                ops, s, reach, ell, V, step, load, indentation, cons, state, progress)
+        except FrictionNotConverged as exc:
+            raise FrictionNotConverged(
+                f"mode {friction.mode!r}, mu = {mu}: the direct solve failed ({cause}) and the "
+                f"continuation in mu stopped at mu = {m:.4g} ({exc}); try mode 'omega' with a "
+                f"prescribed Omega, or a finer grid") from exc
+        history.extend(hist)
+    return N, Sx, Sy, d, om, state, history, h, scale
 
 
 def _unreachable_or_not_converged(friction, history):

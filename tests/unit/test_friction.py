@@ -149,3 +149,48 @@ def test_energy_figure_exceeds_equilibrium_figure_by_the_sphere_slope_term(kerne
     assert re - rr > 0.01 * rr
     assert abs(re - rr - slope_term) < 5e-3 * rr
     assert 0.4 < slope_term / rr / (res.contact_radius**2 / (2 * R * R)) < 1.0
+
+
+def test_towed_with_tiny_friction_converges_to_the_frictionless_solution(kernels):
+    """Towed (T = 0) at mu = 1e-3: the direct start cycles (the moment balance needs one
+    stick node where the slip reverses), the continuation in mu from 0.256 finds it;
+    R_r differs from the frictionless one by O(mu) (measured 0.03 %)."""
+    p = problem()
+    ref, _ = solve_frictionless(p)
+    res, _ = solve_friction(p, Friction(1e-3, "towed"), kernels=kernels, energy=False)
+    assert abs(res.driving_torque) < 1e-12
+    assert 0 < res.stick_fraction < 0.02
+    assert abs(res.rolling_resistance / ref.rolling_resistance - 1) < 1e-3
+    assert res.record.coulomb_residual < 1e-6
+
+
+@pytest.mark.parametrize("mu", [1e-3, 1.0])
+def test_pure_sliding_slips_everywhere_and_saturates(kernels, mu):
+    """Omega = 0: every node slips, the layer is dragged forwards with mu P up to the lateral
+    slip component (measured 0.99999 and 0.99955 mu P); a few iterations (2-5 measured:
+    the start state and joining nodes slip along w with the slip law's own k)."""
+    res, _ = solve_friction(problem(), Friction(mu, "omega", omega=0.0), kernels=kernels, energy=False)
+    assert res.stick_fraction == 0.0
+    assert 0.999 * mu * 150.0 < res.force_x.sum() <= mu * 150.0 * (1 + 1e-9)
+    assert res.record.iterations <= 10
+
+
+def test_a_solve_that_does_not_converge_says_so(kernels):
+    from bem.friction import FrictionNotConverged
+
+    with pytest.raises(FrictionNotConverged, match="continuation in mu stopped at mu"):
+        solve_friction(problem(), Friction(1e-3, "towed", max_iter=3), kernels=kernels, energy=False)
+
+
+@pytest.mark.parametrize("mode", ["towed", "torque", "pushed_at_top"])
+def test_rolling_modes_converge_over_a_range_of_mu(kernels, mode):
+    """Coarse grid (a = 0.5 mm), mu from 0.05 to 2: every solve ends on a discrete
+    Coulomb state (before the re-entry rule, torque at mu = 1 cycled on a boundary node
+    that joined in stick, went into tension and left); more friction, more stick."""
+    fractions = []
+    for mu in (0.05, 0.5, 1.0, 2.0):
+        res, _ = solve_friction(problem(), Friction(mu, mode), kernels=kernels, energy=False)
+        assert res.record.coulomb_residual < 1e-6 and res.record.stick_residual < 1e-10
+        assert res.record.gap_residual < 1e-9
+        fractions.append(res.stick_fraction)
+    assert fractions == sorted(fractions) and fractions[0] < 0.3 < 0.95 < fractions[-1]
