@@ -12,7 +12,10 @@ on the slip set ``C \\ A``, every condition is linear in the unknowns
 * ``sum N = P`` (load control) and the loading mode's equilibrium row (unless
   ``Omega`` is given).
 
-One dense LU solves it (or GMRES with the FFT operators for large sets). Then the sets
+One dense LU solves it (``O((3 n_C)^3)``: about 0.3 s for the 941 contact nodes of the
+paper's section 11, 6 s for 2600; a matrix-free Krylov solve needs a preconditioner for
+the upwind-differenced stick rows, whose circulant embedding is singular at ``nu_x = 0``,
+and is not done yet). Then the sets
 are updated: tension leaves the contact, penetration joins it; a stick node whose force
 exceeds the cone ``|S| <= mu N`` slips along ``S/|S|``; a slip node whose velocity turns
 against its force ``w . e <= 0`` sticks; the slip directions take ``w/|w|`` (a fixed point
@@ -222,7 +225,6 @@ def solve_rolling(ops: RollingOperators, profile, arm, ell, radius: float, speed
     normal = solve_normal(ops.op("ww"), profile, load=load, indentation=indentation)
     N0 = normal.force.ravel()
     cons = _constraint(mode, arm, ell, radius)
-    omega_free = friction.omega is None
     if cons is not None and mode != "towed":
         need = abs(float(cons[0] @ N0))
         can = mu * float(np.abs(cons[1]) @ N0)
