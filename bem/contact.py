@@ -172,11 +172,7 @@ class _LinearSolver:
 
         dim = n + 1 if bordered else n
         A = LinearOperator((dim, dim), matvec=matvec, dtype=float)
-        try:
-            self.op.circulant_inverse(np.zeros(shape))
-            M = LinearOperator((dim, dim), matvec=precondition, dtype=float)
-        except ZeroDivisionError:
-            M = None
+        M = LinearOperator((dim, dim), matvec=precondition, dtype=float) if self.op.has_circulant_inverse else None
         b = np.concatenate([-s_A, [diag * load]]) if bordered else indentation - s_A
         x0 = guess if bordered else guess[:n]
         count = [0]

@@ -59,6 +59,15 @@ class ComplianceOperator:
         out = sfft.irfft2(sfft.rfft2(f, s=self._size, workers=-1) * np.conj(self._hat), s=self._size, workers=-1)
         return out[:Ky, :Kx]
 
+    @property
+    def has_circulant_inverse(self) -> bool:
+        """Whether the circulant embedding is safely invertible (its smallest eigenvalue
+        modulus above 1e-12 of the largest); computes and keeps the inverse spectrum."""
+        if not hasattr(self, "_inv_hat"):
+            mag = np.abs(self._hat)
+            self._inv_hat = 1.0 / self._hat if mag.min() > 1e-12 * mag.max() else None
+        return self._inv_hat is not None
+
     def circulant_inverse(self, values: np.ndarray) -> np.ndarray:
         """Exact inverse of the circulant embedding of ``C`` applied to ``values``
         (shape ``(K_y, K_x)``, zero-padded to the embedding), read back on the grid.
@@ -67,11 +76,8 @@ class ComplianceOperator:
         spectrally close to it: a preconditioner for Krylov solves on contact sets. Raises
         ``ZeroDivisionError`` if the embedding is (nearly) singular.
         """
-        if not hasattr(self, "_inv_hat"):
-            mag = np.abs(self._hat)
-            if mag.min() <= 1e-12 * mag.max():
-                raise ZeroDivisionError("the circulant embedding of the compliance is nearly singular")
-            self._inv_hat = 1.0 / self._hat
+        if not self.has_circulant_inverse:
+            raise ZeroDivisionError("the circulant embedding of the compliance is nearly singular")
         Ky, Kx = self.grid.shape
         f = np.asarray(values, dtype=float).reshape(Ky, Kx)
         out = sfft.irfft2(sfft.rfft2(f, s=self._size, workers=-1) * self._inv_hat, s=self._size, workers=-1)

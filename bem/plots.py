@@ -9,6 +9,19 @@ import numpy as np
 __all__ = ["plot_normal_contact", "plot_frictional_contact"]
 
 
+def _save(fig, path, dpi: int) -> Path:
+    """Write ``fig`` to ``path`` (PNG), making its folder; close it; return the path."""
+    import matplotlib.pyplot as plt
+
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=dpi)
+    plt.close(fig)
+    return path
+
+
+
+
 def plot_normal_contact(result, path: str | Path, title: str = "") -> Path:
     """Pressure map and its ``y = 0`` profile, side by side; returns the path."""
     import matplotlib
@@ -36,11 +49,7 @@ def plot_normal_contact(result, path: str | Path, title: str = "") -> Path:
         f"P = {result.load:.4g} N, d = {result.indentation * 1e3:.4g} mm, "
         f"r_c = {result.contact_radius * 1e3:.4g} mm, R_r = {result.rolling_resistance:.5g} N"
     ))
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
-    return path
+    return _save(fig, path, 120)
 
 
 def plot_frictional_contact(result, path: str | Path, title: str = "", max_arrows: int = 24) -> Path:
@@ -108,8 +117,4 @@ def plot_frictional_contact(result, path: str | Path, title: str = "", max_arrow
         f"(friction {result.rolling_resistance_friction:.3g} N), Omega = {om:.5g} rad/s, "
         f"Q = {result.driving_force:.4g} N, T = {result.driving_torque:.4g} N m"
     ))
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path
+    return _save(fig, path, 110)

@@ -13,7 +13,7 @@ from .layer import Layer
 from .operator import ComplianceOperator
 from .spectral import influence_kernels
 
-__all__ = ["Loading", "Problem", "solve_frictionless", "auto_half_width"]
+__all__ = ["Loading", "Problem", "compute_kernels", "solve_frictionless", "auto_half_width"]
 
 
 @dataclass(frozen=True)
@@ -76,6 +76,19 @@ def auto_half_width(layer: Layer, indenter, loading: Loading, spacing: float) ->
     return half if length is None else max(half, length / 2 + 2 * spacing)
 
 
+def compute_kernels(problem: Problem, blocks, progress: Callable[[str], None] | None = None) -> tuple[dict, float]:
+    """Kernel tables of ``blocks`` for the problem's grid, layer and speed, with one
+    progress line; returns them and the seconds they took."""
+    p = problem
+    t0 = time.perf_counter()
+    kernels = influence_kernels(p.grid, p.layer, p.loading.speed, blocks=blocks)
+    seconds = time.perf_counter() - t0
+    if progress:
+        progress(f"compliance ({len(kernels)} block(s)): {p.grid.nodes_x} x {p.grid.nodes_y} nodes, "
+                 f"Nt = {p.grid.truncation_x} x {p.grid.truncation_y}, {seconds:.2f} s")
+    return kernels, seconds
+
+
 def solve_frictionless(
     problem: Problem,
     progress: Callable[[str], None] | None = None,
@@ -90,13 +103,9 @@ def solve_frictionless(
     """
     p = problem
     while True:
-        t0 = time.perf_counter()
-        kernel = influence_kernels(p.grid, p.layer, p.loading.speed, blocks=("ww",))["ww"]
-        op = ComplianceOperator(p.grid, kernel)
+        kernels, kernel_s = compute_kernels(p, ("ww",), progress)
+        op = ComplianceOperator(p.grid, kernels["ww"])
         t1 = time.perf_counter()
-        if progress:
-            progress(f"compliance: {p.grid.nodes_x} x {p.grid.nodes_y} nodes, "
-                     f"Nt = {p.grid.truncation_x} x {p.grid.truncation_y}, {t1 - t0:.2f} s")
         X, Y = p.grid.coordinates()
         try:
             res = solve_normal(
@@ -118,4 +127,4 @@ def solve_frictionless(
             p = replace(p, grid=bigger)
             continue
         t2 = time.perf_counter()
-        return res, {"kernel_s": t1 - t0, "solve_s": t2 - t1}
+        return res, {"kernel_s": kernel_s, "solve_s": t2 - t1}
