@@ -87,6 +87,9 @@ class Friction:
     direction_tol : float
         Convergence of the slip law on slip nodes: largest of ``||S| / (mu N) - 1|`` and
         ``|sin|`` of the angle between ``S`` and ``w`` (-), > 0.
+    dense_limit : int
+        Largest linear system (unknowns, three per contact node) solved by dense LU; larger
+        ones use GMRES with FFT products and an FFT preconditioner (``O(N)`` memory), >= 0.
     set_tol : float
         When the stick/slip sets alternate between two states (a node on the stick/slip
         border of the discrete problem), the state is accepted if a stick node exceeds the
@@ -101,6 +104,7 @@ class Friction:
     max_iter: int = 300
     direction_tol: float = 1e-7
     set_tol: float = 1e-2
+    dense_limit: int = 1000
 
     def __post_init__(self) -> None:
         if not (isinstance(self.mu, (int, float)) and math.isfinite(self.mu) and self.mu >= 0):
@@ -118,6 +122,8 @@ class Friction:
             raise ValueError(f"max_iter must be an integer > 0, got {self.max_iter!r}")
         if not (self.direction_tol > 0):
             raise ValueError(f"direction_tol must be > 0, got {self.direction_tol!r}")
+        if not (isinstance(self.dense_limit, int) and self.dense_limit >= 0):
+            raise ValueError(f"dense_limit must be an integer >= 0, got {self.dense_limit!r}")
         if not (self.set_tol >= 0):
             raise ValueError(f"set_tol must be >= 0, got {self.set_tol!r}")
 

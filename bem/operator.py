@@ -40,6 +40,18 @@ class ComplianceOperator:
         self._hat = sfft.rfft2(circ, workers=-1)
 
     @property
+    def embedding(self) -> tuple[int, int]:
+        """Shape of the circulant embedding (rows, columns)."""
+        return self._size
+
+    @property
+    def spectrum(self) -> np.ndarray:
+        """Eigenvalues of the circulant embedding (its kernel's ``rfft2``), read-only."""
+        out = self._hat.view()
+        out.flags.writeable = False
+        return out
+
+    @property
     def shape(self) -> tuple[int, int]:
         n = self.grid.nodes_x * self.grid.nodes_y
         return (n, n)

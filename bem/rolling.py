@@ -47,6 +47,8 @@ from dataclasses import replace
 from typing import Callable
 
 import numpy as np
+import scipy.fft as sfft
+from scipy.sparse.linalg import LinearOperator, gmres
 
 from .contact import ContactAtEdge, ContactError, solve_normal, _edge_nodes
 from .energy import viscous_dissipation
@@ -63,8 +65,9 @@ _DIFFERENCED = ("uw", "uu", "uv", "vw", "vu", "vv")
 
 
 class RollingOperators:
-    """The nine kernel tables of a grid, the upwind-differenced ``u, v`` rows, and their
-    dense blocks and FFT operators (built on demand)."""
+    """The nine kernel tables of a grid, the upwind-differenced ``u, v`` rows, their
+    dense blocks and FFT operators (built on demand), and the inverse of the undifferenced
+    3 x 3 circulant embedding (the matrix-free solver's preconditioner)."""
 
     def __init__(self, grid: Grid, kernels: dict):
         self.grid = grid
@@ -73,6 +76,7 @@ class RollingOperators:
         for b in _DIFFERENCED:
             self.tables["d" + b] = upwind_table(kernels[b], grid.spacing_x)
         self._ops: dict = {}
+        self._inverse3 = None
 
     def op(self, name: str) -> ComplianceOperator:
         if name not in self._ops:
@@ -86,20 +90,43 @@ class RollingOperators:
         jc, ic = np.divmod(cols, Kx)
         return self.tables[name][(jr[:, None] - jc[None, :]) + Ky - 1, (ir[:, None] - ic[None, :]) + Kx - 1]
 
+    def _convolve(self, names, N, Sx, Sy):
+        """``sum_j sign_j K_j * f_j`` for each row of ``names`` (block names with signs,
+        ``-`` for the normal force ``-N``), sharing the three forward FFTs."""
+        Ky, Kx = self.grid.shape
+        emb = self.op("ww").embedding
+        F = [sfft.rfft2(np.asarray(f, float).reshape(Ky, Kx), s=emb, workers=-1) for f in (N, Sx, Sy)]
+        out = []
+        for row in names:
+            acc = sum(sign * self.op(name).spectrum * f for (sign, name), f in zip(row, F))
+            out.append(sfft.irfft2(acc, s=emb, workers=-1)[:Ky, :Kx])
+        return out
+
     def fields(self, N, Sx, Sy):
         """Downward deflection (m) and upwind strains ``du/dx, dv/dx`` (-) on the grid."""
-        a = self.op
-        delta = a("ww").apply(N) - a("wu").apply(Sx) - a("wv").apply(Sy)
-        ex = -a("duw").apply(N) + a("duu").apply(Sx) + a("duv").apply(Sy)
-        ey = -a("dvw").apply(N) + a("dvu").apply(Sx) + a("dvv").apply(Sy)
-        return delta, ex, ey
+        return self._convolve((((1, "ww"), (-1, "wu"), (-1, "wv")),
+                               ((-1, "duw"), (1, "duu"), (1, "duv")),
+                               ((-1, "dvw"), (1, "dvu"), (1, "dvv"))), N, Sx, Sy)
 
     def displacements(self, N, Sx, Sy):
         """Horizontal surface displacements ``u, v`` (m)."""
-        a = self.op
-        u = -a("uw").apply(N) + a("uu").apply(Sx) + a("uv").apply(Sy)
-        v = -a("vw").apply(N) + a("vu").apply(Sx) + a("vv").apply(Sy)
-        return u, v
+        return self._convolve((((-1, "uw"), (1, "uu"), (1, "uv")),
+                               ((-1, "vw"), (1, "vu"), (1, "vv"))), N, Sx, Sy)
+
+    def inverse3(self) -> np.ndarray:
+        """Inverse, frequency by frequency, of the circulant embedding of the map from
+        ``(N, S_x, S_y)`` to ``(delta, u, v)`` (shape ``(*embedding_spectrum, 3, 3)``).
+        Raises ``ZeroDivisionError`` if a frequency's 3 x 3 symbol is (nearly) singular."""
+        if self._inverse3 is None:
+            sym = np.empty(self.op("ww").spectrum.shape + (3, 3), complex)
+            for i, a in enumerate("wuv"):  # delta = C_ww N - C_wu S_x - ..., u = -C_uw N + C_uu S_x + ...
+                for j, b in enumerate("wuv"):
+                    sym[..., i, j] = (1 if (i == 0) == (j == 0) else -1) * self.op(a + b).spectrum
+            s = np.linalg.svd(sym, compute_uv=False)
+            if not (s[..., -1] > 1e-12 * s[..., 0].max()).all():
+                raise ZeroDivisionError("the 3 x 3 circulant embedding of the compliance is nearly singular")
+            self._inverse3 = np.linalg.inv(sym)
+        return self._inverse3
 
 
 def _constraint(mode: str, arm, ell, R):
@@ -113,79 +140,189 @@ def _constraint(mode: str, arm, ell, R):
     return None
 
 
-def _solve_sets(ops, s, C, stick, e, k, mu, ell, V, load, indentation, omega, cons):
-    """Solve the linear system of one active-set state; returns full-grid N, Sx, Sy, d, Omega.
+class _SetSystem:
+    """The linear system of one active-set state, dense or matrix-free.
 
-    Unknowns ``(N_C, Sx_C, Sy_C, d, Omega)``; rows: gap on ``C``; on stick nodes the two
-    no-slip rows; on slip nodes the Newton linearisation of eqs. 17-18 about the current
-    force direction ``e``: ``e . S = mu N`` and ``e_perp . w - k e_perp . S = 0`` with
-    ``k = (e . w) / |S|`` from the previous iterate (``k = 0`` on new slip nodes).
+    Unknowns ``x = (N_C, Sx_C, Sy_C, d, Omega)`` (``d`` under load control, ``Omega`` when
+    free). Rows, all in metres: the gap on ``C``; on stick nodes ``a_x w_x / V`` and
+    ``a_x w_y / V`` (the upwind differences ``u_{i+1} - u_i`` plus the rigid creep); on
+    slip nodes the Newton linearisation of eqs. 17-18 about the current force direction
+    ``e``: ``e . S = mu N`` (times the diagonal compliance) and
+    ``a_x (e_perp . w - k e_perp . S) / V = 0`` with ``k = (e . w) / |S|`` from the previous
+    iterate; ``sum N = P`` (times the diagonal compliance); the loading mode's row.
+    :meth:`rows` writes them once for both the dense matrix and the FFT product.
     """
-    g = ops.grid
-    size = g.nodes_x * g.nodes_y
-    nC = C.size
-    free_d, free_om = load is not None, omega is None
-    n = 3 * nC + free_d + free_om
-    M = np.zeros((n, n))
-    b = np.zeros(n)
-    cx_, cy_ = slice(nC, 2 * nC), slice(2 * nC, 3 * nC)
-    iD = 3 * nC
-    iO = iD + free_d
-    diag = float(ops.tables["ww"][g.nodes_y - 1, g.nodes_x - 1])
-    # gap rows (m)
-    M[:nC, :nC] = ops.dense("ww", C, C)
-    M[:nC, cx_] = -ops.dense("wu", C, C)
-    M[:nC, cy_] = -ops.dense("wv", C, C)
-    b[:nC] = -s[C] + (0.0 if free_d else indentation)
-    if free_d:
-        M[:nC, iD] = -1.0
-    # a_x w_x / V and a_x w_y / V on every contact node, as rows over the unknowns (m)
-    ax = g.spacing_x
-    Dx = ax * np.hstack([-ops.dense("duw", C, C), ops.dense("duu", C, C), ops.dense("duv", C, C)])
-    Dy = ax * np.hstack([-ops.dense("dvw", C, C), ops.dense("dvu", C, C), ops.dense("dvv", C, C)])
-    ox = -ax * ell[C] / V  # Omega coefficient in a_x w_x / V
-    bx = -ax * np.ones(nC)  # constant part of a_x w_x / V, moved to the right
-    if not free_om:
-        bx = bx + ax * omega * ell[C] / V
-    st = stick[C]
-    A, B = np.flatnonzero(st), np.flatnonzero(~st)
-    rx, ry = nC + A, 2 * nC + A
-    M[rx, :iD], M[ry, :iD] = Dx[A], Dy[A]
-    b[rx] = bx[A]
-    if free_om:
-        M[rx, iO] = ox[A]
-    if B.size:
-        ex, ey = e[C[B], 0], e[C[B], 1]
-        kk = k[C[B]] * ax / V
-        r1, r2 = nC + B, 2 * nC + B
-        M[r1, B] = -mu * diag
-        M[r1, nC + B] = ex * diag
-        M[r1, 2 * nC + B] = ey * diag
-        M[r2, :iD] = -ey[:, None] * Dx[B] + ex[:, None] * Dy[B]
-        M[r2, nC + B] += kk * ey
-        M[r2, 2 * nC + B] -= kk * ex
-        b[r2] = -ey * bx[B]
-        if free_om:
-            M[r2, iO] = -ey * ox[B]
-    row = iD
-    if free_d:
-        M[row, :nC] = diag
-        b[row] = diag * load
-        row += 1
-    if free_om:
-        cN, cx = cons
-        scale = diag / max(np.abs(cx).max(), 1e-300)
-        M[row, :nC] = cN[C] * scale
-        M[row, cx_] = cx[C] * scale
-    try:
-        x = np.linalg.solve(M, b)
-    except np.linalg.LinAlgError as exc:
-        raise FrictionNotConverged(f"singular system on {nC} contact / {A.size} stick nodes: {exc}") from exc
-    N, Sx, Sy = np.zeros(size), np.zeros(size), np.zeros(size)
-    N[C], Sx[C], Sy[C] = x[:nC], x[cx_], x[cy_]
-    d = x[iD] if free_d else indentation
-    om = x[iO] if free_om else omega
-    return N, Sx, Sy, float(d), float(om)
+
+    def __init__(self, ops, s, C, stick, e, k, mu, ell, V, load, indentation, omega, cons):
+        g = ops.grid
+        self.ops, self.C, self.mu = ops, C, mu
+        nC = self.nC = C.size
+        self.free_d, self.free_om = load is not None, omega is None
+        self.n = 3 * nC + self.free_d + self.free_om
+        self.iD, self.iO = 3 * nC, 3 * nC + self.free_d
+        self.diag = float(ops.tables["ww"][g.nodes_y - 1, g.nodes_x - 1])
+        self.ax = ax = g.spacing_x
+        st = stick[C]
+        self.A, self.B = np.flatnonzero(st), np.flatnonzero(~st)
+        self.ex, self.ey = e[C[self.B], 0], e[C[self.B], 1]
+        self.kk = k[C[self.B]] * ax / V
+        self.ox = -ax * ell[C] / V  # Omega's coefficient in a_x w_x / V
+        if self.free_om:
+            cN, cx = cons
+            scale = self.diag / max(np.abs(cx).max(), 1e-300)
+            self.cN, self.cx = cN[C] * scale, cx[C] * scale
+            # the preconditioner's Omega step: the inverse of its stick-row coefficient
+            self.om_step = V / (ax * float(np.abs(ell[C]).mean()))
+        # right-hand side: the rows' constant parts, moved over
+        bx = -ax * np.ones(nC) + (0.0 if self.free_om else ax * omega * ell[C] / V)
+        b = np.zeros(self.n)
+        b[:nC] = -s[C] + (0.0 if self.free_d else indentation)
+        b[nC + self.A] = bx[self.A]
+        b[2 * nC + self.B] = -self.ey * bx[self.B]
+        if self.free_d:
+            b[self.iD] = self.diag * load
+        self.b = b
+        self.omega, self.indentation = omega, indentation
+
+    def rows(self, gap, Dx, Dy, X):
+        """Rows for unknowns ``X`` (``n x m``), given ``gap = C_ww N - C_wu S_x - C_wv S_y``
+        and ``Dx, Dy`` (the upwind differences of ``u, v``) on ``C`` (``nC x m``)."""
+        nC, A, B = self.nC, self.A, self.B
+        N, Sx, Sy = X[:nC], X[nC:2 * nC], X[2 * nC:3 * nC]
+        out = np.empty((self.n, X.shape[1]))
+        out[:nC] = gap - X[self.iD] if self.free_d else gap
+        if self.free_om:
+            Dx = Dx + self.ox[:, None] * X[self.iO]
+        out[nC + A], out[2 * nC + A] = Dx[A], Dy[A]
+        ex, ey = self.ex[:, None], self.ey[:, None]
+        out[nC + B] = self.diag * (ex * Sx[B] + ey * Sy[B] - self.mu * N[B])
+        out[2 * nC + B] = -ey * Dx[B] + ex * Dy[B] + self.kk[:, None] * (ey * Sx[B] - ex * Sy[B])
+        if self.free_d:
+            out[self.iD] = self.diag * N.sum(0)
+        if self.free_om:
+            out[self.iO] = self.cN @ N + self.cx @ Sx
+        return out
+
+    def dense(self) -> np.ndarray:
+        ops, C, nC, ax = self.ops, self.C, self.nC, self.ax
+        pad = np.zeros((nC, self.n - 3 * nC))
+
+        def block(names, factor=1.0):
+            return factor * np.hstack([sg * ops.dense(nm, C, C) for sg, nm in names] + [pad])
+
+        gap = block(((1, "ww"), (-1, "wu"), (-1, "wv")))
+        Dx = block(((-1, "duw"), (1, "duu"), (1, "duv")), ax)
+        Dy = block(((-1, "dvw"), (1, "dvu"), (1, "dvv")), ax)
+        return self.rows(gap, Dx, Dy, np.eye(self.n))
+
+    def full(self, x):
+        """Full-grid ``N, S_x, S_y`` and ``d, Omega`` from the unknowns."""
+        g = self.ops.grid
+        size, nC, C = g.nodes_x * g.nodes_y, self.nC, self.C
+        N, Sx, Sy = np.zeros(size), np.zeros(size), np.zeros(size)
+        N[C], Sx[C], Sy[C] = x[:nC], x[nC:2 * nC], x[2 * nC:3 * nC]
+        d = x[self.iD] if self.free_d else self.indentation
+        om = x[self.iO] if self.free_om else self.omega
+        return N, Sx, Sy, float(d), float(om)
+
+    def unknowns(self, N, Sx, Sy, d, om):
+        """The inverse of :meth:`full` (a starting guess from full-grid fields)."""
+        C = self.C
+        glob = ([d] if self.free_d else []) + ([om] if self.free_om else [])
+        return np.concatenate([N[C], Sx[C], Sy[C], glob])
+
+    def matvec(self, x):
+        N, Sx, Sy, _, _ = self.full(x)
+        gap, ex, ey = (f.ravel()[self.C, None] for f in self.ops.fields(N, Sx, Sy))
+        return self.rows(gap, self.ax * ex, self.ax * ey, x[:, None])[:, 0]
+
+    def _upstream_sum(self, rho):
+        """``u`` with ``u_{i+1} - u_i = rho_i`` on each run of contact nodes along ``x``
+        and ``u = 0`` at the first node past the run's leading end."""
+        g = self.ops.grid
+        Ky, Kx = g.shape
+        r = np.zeros(Ky * Kx)
+        r[self.C] = rho
+        cs = np.cumsum(r.reshape(Ky, Kx)[:, ::-1], axis=1)[:, ::-1]  # sum over j >= i
+        off = np.ones(Ky * Kx, bool)
+        off[self.C] = False
+        off = off.reshape(Ky, Kx)
+        # index of the first off-contact node at or after each node (Kx if none)
+        nxt = np.where(off, np.arange(Kx)[None, :], Kx)[:, ::-1]
+        nxt = np.minimum.accumulate(nxt, axis=1)[:, ::-1]
+        past = np.take_along_axis(np.hstack([cs, np.zeros((Ky, 1))]), nxt, 1)
+        return -(cs - past).ravel()[self.C]
+
+    def precondition(self, r):
+        """Approximate inverse: turn the difference rows into displacements by summing
+        them from each run's leading end (neglecting the displacement just ahead of it),
+        map the displacements to forces by the inverse 3 x 3 circulant embedding, then
+        set the slip nodes' force along ``e`` from their first row."""
+        nC, C, B = self.nC, self.C, self.B
+        rg, rx, ry = r[:nC], r[nC:2 * nC], r[2 * nC:3 * nC]
+        rho_x, rho_y = rx.copy(), ry.copy()
+        rho_x[B], rho_y[B] = -self.ey * ry[B], self.ex * ry[B]
+        g = self.ops.grid
+        Ky, Kx = g.shape
+        emb = self.ops.op("ww").embedding
+        F = []
+        for target in (rg, self._upstream_sum(rho_x), self._upstream_sum(rho_y)):
+            f = np.zeros(Ky * Kx)
+            f[C] = target
+            F.append(sfft.rfft2(f.reshape(Ky, Kx), s=emb, workers=-1))
+        G = np.einsum("...ij,j...->i...", self.ops.inverse3(), np.stack(F))
+        out = np.empty(self.n)
+        for c in range(3):
+            out[c * nC:(c + 1) * nC] = sfft.irfft2(G[c], s=emb, workers=-1)[:Ky, :Kx].ravel()[C]
+        sx, sy = out[nC + B], out[2 * nC + B]
+        fix = self.mu * out[B] + rx[B] / self.diag - (self.ex * sx + self.ey * sy)
+        out[nC + B], out[2 * nC + B] = sx + fix * self.ex, sy + fix * self.ey
+        if self.free_d:
+            out[self.iD] = r[self.iD]
+        if self.free_om:
+            out[self.iO] = r[self.iO] * self.om_step
+        return out
+
+
+class _LinearSolves:
+    """Dense LU up to ``dense_limit`` unknowns, preconditioned GMRES (FFT products,
+    ``O(N)`` memory) above; counts the GMRES iterations.
+
+    GMRES solves for the correction to the previous active-set iterate and reduces its
+    residual by ``reduction``: each solve gains accuracy as the slip directions settle, so
+    the fixed point is not stalled by a tolerance relative to ``b`` (the slip law's misfit
+    is measured on the smallest forces and slip speeds, at the edges of the slip zone)."""
+
+    def __init__(self, dense_limit: int, reduction: float = 1e-10):
+        self.dense_limit, self.reduction = dense_limit, reduction
+        self.used_gmres, self.iterations = False, 0
+
+    def __call__(self, system: _SetSystem, guess=None):
+        n = system.n
+        if n <= self.dense_limit:
+            try:
+                return system.full(np.linalg.solve(system.dense(), system.b))
+            except np.linalg.LinAlgError as exc:
+                raise FrictionNotConverged(f"singular system on {system.nC} contact / "
+                                           f"{system.A.size} stick nodes: {exc}") from exc
+        self.used_gmres = True
+        try:
+            system.ops.inverse3()
+            M = LinearOperator((n, n), matvec=system.precondition, dtype=float)
+        except ZeroDivisionError:
+            M = None
+        count = [0]
+        x0 = np.zeros(n) if guess is None else guess
+        r0 = system.b - system.matvec(x0)
+        dx, info = gmres(LinearOperator((n, n), matvec=system.matvec, dtype=float), r0,
+                         rtol=self.reduction, atol=0.0, restart=200, maxiter=10, M=M,
+                         callback=lambda _: count.__setitem__(0, count[0] + 1), callback_type="pr_norm")
+        self.iterations += count[0]
+        if info != 0:
+            raise FrictionNotConverged(
+                f"GMRES did not reduce the residual by {self.reduction:.1e} on {system.nC} contact "
+                f"nodes ({system.A.size} stick) in {count[0]} iterations")
+        return system.full(x0 + dx)
 
 
 def solve_rolling(ops: RollingOperators, profile, arm, ell, radius: float, speed: float,
@@ -240,20 +377,21 @@ def solve_rolling(ops: RollingOperators, profile, arm, ell, radius: float, speed
                        np.zeros(size, bool), (), "dense", 0, radius)
 
     start = _start_state(N0, ell, V, friction)
+    solves = _LinearSolves(friction.dense_limit)
     try:
         N, Sx, Sy, d, om, state, history, h, scale = _active_set(
-            ops, s, reach, ell, V, friction, load, indentation, cons, start, progress)
+            ops, s, reach, ell, V, friction, load, indentation, cons, start, progress, solves)
     except LoadingUnreachable:
         raise
     except FrictionNotConverged as exc:
         if mode == "omega":
             raise
         N, Sx, Sy, d, om, state, history, h, scale = _continuation(
-            ops, s, reach, ell, V, friction, load, indentation, cons, N0, progress, exc)
+            ops, s, reach, ell, V, friction, load, indentation, cons, N0, progress, exc, solves)
     contact, stick = state[0], state[1]
     resid = (max(np.abs(h[contact]).max(initial=0.0), (-h[reach & ~contact]).max(initial=0.0)) / scale,)
     return _finish(ops, s, arm, ell, V, friction, N, Sx, Sy, d, om, stick & contact, tuple(history),
-                   "dense", 0, radius, resid[0])
+                   "gmres" if solves.used_gmres else "dense", solves.iterations, radius, resid[0])
 
 
 def _start_state(N0, ell, V, friction):
@@ -275,7 +413,7 @@ def _start_state(N0, ell, V, friction):
     return contact, stick, e_full, k_full
 
 
-def _active_set(ops, s, reach, ell, V, friction, load, indentation, cons, start, progress):
+def _active_set(ops, s, reach, ell, V, friction, load, indentation, cons, start, progress, solves):
     """Kalker's active-set iteration from the sets ``start = (contact, stick, e, k)``;
     returns the forces, ``d``, ``Omega``, the final sets, the history and the gap."""
     g = ops.grid
@@ -293,8 +431,10 @@ def _active_set(ops, s, reach, ell, V, friction, load, indentation, cons, start,
         if omega_free and not (stick & contact).any():  # Omega needs one stick node at least
             Sl = np.flatnonzero(contact)
             stick[Sl[np.argmin(np.hypot(wx[Sl], wy[Sl]))]] = True
-        N, Sx, Sy, d, om = _solve_sets(ops, s, C, stick, e_full, k_full, mu, ell, V, load, indentation,
-                                       friction.omega, cons)
+        system = _SetSystem(ops, s, C, stick, e_full, k_full, mu, ell, V, load, indentation,
+                            friction.omega, cons)
+        guess = None if it == 1 else system.unknowns(N, Sx, Sy, d, om)
+        N, Sx, Sy, d, om = solves(system, guess)
         delta, ex, ey = (f.ravel() for f in ops.fields(N.reshape(shape), Sx.reshape(shape), Sy.reshape(shape)))
         h = np.where(reach, s - d + delta, np.inf)
         wx, wy = V * (1 + ex) - om * ell, V * ey
@@ -395,7 +535,7 @@ def _active_set(ops, s, reach, ell, V, friction, load, indentation, cons, start,
     return N, Sx, Sy, d, om, (contact, stick, e_full, k_full), history, h, scale
 
 
-def _continuation(ops, s, reach, ell, V, friction, load, indentation, cons, N0, progress, cause):
+def _continuation(ops, s, reach, ell, V, friction, load, indentation, cons, N0, progress, cause, solves):
     """Continuation in ``mu`` after a failed direct solve (loading modes with a free
     ``Omega``): solve at ``mu 2^K`` (``K >= 1``, the smallest with ``mu 2^K >= 0.2``, where
     a stick zone carries the moment), then halve ``mu`` down to the requested value,
@@ -416,7 +556,7 @@ def _continuation(ops, s, reach, ell, V, friction, load, indentation, cons, N0, 
         step = replace(friction, mu=m)
         try:
             N, Sx, Sy, d, om, state, hist, h, scale = _active_set(
-                ops, s, reach, ell, V, step, load, indentation, cons, state, progress)
+                ops, s, reach, ell, V, step, load, indentation, cons, state, progress, solves)
         except FrictionNotConverged as exc:
             raise FrictionNotConverged(
                 f"mode {friction.mode!r}, mu = {mu}: the direct solve failed ({cause}) and the "

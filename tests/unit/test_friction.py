@@ -194,3 +194,78 @@ def test_rolling_modes_converge_over_a_range_of_mu(kernels, mode):
         assert res.record.gap_residual < 1e-9
         fractions.append(res.stick_fraction)
     assert fractions == sorted(fractions) and fractions[0] < 0.3 < 0.95 < fractions[-1]
+
+
+def _state(kernels, seed=0):
+    """A synthetic active-set state on the frictionless contact of the coarse grid:
+    random stick/slip split, slip directions and slip-law slopes."""
+    from bem.contact import solve_normal
+    from bem.rolling import RollingOperators
+
+    ops = RollingOperators(GRID, kernels)
+    X, Y = GRID.coordinates()
+    s = Sphere(0.02).profile(X, Y)
+    N0 = solve_normal(ops.op("ww"), s, load=150.0).force.ravel()
+    rng = np.random.default_rng(seed)
+    C = np.flatnonzero(N0 > 0)
+    stick = np.zeros(N0.size, bool)
+    stick[C] = rng.random(C.size) < 0.7
+    ang = rng.uniform(0, 2 * np.pi, N0.size)
+    e = np.stack([np.cos(ang), np.sin(ang)], 1)
+    k = rng.uniform(0.1, 2.0, N0.size) * V / N0.max()
+    ell = rolling_radius(Sphere(0.02), Y).ravel()
+    arm = Sphere(0.02).rolling_arm(X, Y).ravel()
+    return ops, s.ravel(), C, stick, e, k, ell, arm
+
+
+@pytest.mark.parametrize("load, indentation, omega", [(150.0, None, None), (None, 1e-4, 2.4)])
+def test_matrix_free_product_equals_the_dense_system(kernels, load, indentation, omega):
+    """The FFT product of the active-set system equals its dense matrix (both come from
+    the same row definitions, the blocks from different code: dense tables vs FFT)."""
+    from bem.rolling import _SetSystem, _constraint
+
+    ops, s, C, stick, e, k, ell, arm = _state(kernels)
+    cons = None if omega is not None else _constraint("pushed_at_top", arm, ell, 0.02)
+    system = _SetSystem(ops, s, C, stick, e, k, 0.2, ell, V, load, indentation, omega, cons)
+    assert system.n == 3 * C.size + (load is not None) + (omega is None)
+    M = system.dense()
+    x = np.random.default_rng(3).normal(size=system.n)
+    x[:C.size] *= 1e-3  # forces of the scale of a nodal force
+    ref = M @ x
+    np.testing.assert_allclose(system.matvec(x), ref, rtol=0, atol=1e-12 * np.abs(ref).max())
+
+
+def test_upstream_sum_inverts_the_upwind_difference_on_runs(kernels):
+    """On every run of contact nodes along x, summing the differences u_{i+1} - u_i from
+    the run's leading end returns u when u vanishes just past that end."""
+    from bem.rolling import _SetSystem
+
+    ops, s, C, stick, e, k, ell, arm = _state(kernels)
+    C = C[np.random.default_rng(5).random(C.size) < 0.8]  # several runs per row
+    system = _SetSystem(ops, s, C, stick, e, k, 0.2, ell, V, 150.0, None, 2.0, None)
+    Ky, Kx = GRID.shape
+    inside = np.zeros(Ky * Kx, bool)
+    inside[C] = True
+    u = np.where(inside, np.random.default_rng(6).normal(size=Ky * Kx), 0.0).reshape(Ky, Kx)
+    diff = np.zeros_like(u)
+    diff[:, :-1] = u[:, 1:] - u[:, :-1]
+    np.testing.assert_allclose(system._upstream_sum(diff.ravel()[C]), u.ravel()[C], rtol=0, atol=1e-12)
+
+
+@pytest.mark.parametrize("mode, omega", [("pushed_at_top", None), ("towed", None), ("torque", None),
+                                         ("omega", 2.3)])
+def test_matrix_free_solve_equals_the_dense_solve(kernels, mode, omega):
+    """Preconditioned GMRES (dense_limit = 0) ends on the dense solver's state."""
+    p = problem()
+    dense, _ = solve_friction(p, Friction(0.3, mode=mode, omega=omega, dense_limit=10**6),
+                              kernels=kernels, energy=False)
+    it, _ = solve_friction(p, Friction(0.3, mode=mode, omega=omega, dense_limit=0),
+                           kernels=kernels, energy=False)
+    assert dense.record.linear_solver == "dense" and it.record.linear_solver == "gmres"
+    assert it.record.linear_iterations > 0
+    assert np.array_equal(it.stick, dense.stick) and np.array_equal(it.contact, dense.contact)
+    scale = dense.force.max()
+    for a, b in ((it.force, dense.force), (it.force_x, dense.force_x), (it.force_y, dense.force_y)):
+        np.testing.assert_allclose(a, b, rtol=0, atol=1e-9 * scale)
+    assert abs(it.rolling_resistance - dense.rolling_resistance) < 1e-9 * abs(dense.rolling_resistance)
+    assert abs(it.omega - dense.omega) < 1e-9 * abs(dense.omega)
