@@ -22,7 +22,7 @@ _SECTIONS = {
     "loading": {"speed", "load", "indentation"},
     "grid": {"spacing", "spacing_x", "spacing_y", "period", "period_x", "period_y", "truncation",
              "truncation_x", "truncation_y", "half_width", "half_width_x", "half_width_y"},
-    "friction": {"mu", "mode", "omega", "radius", "max_iter", "direction_tol", "set_tol"},
+    "friction": {"mu", "mode", "omega", "radius", "max_iter", "direction_tol", "set_tol", "dense_limit"},
     "fem": None,  # read by fem_reference only
 }
 

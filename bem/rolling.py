@@ -12,10 +12,21 @@ on the slip set ``C \\ A``, every condition is linear in the unknowns
 * ``sum N = P`` (load control) and the loading mode's equilibrium row (unless
   ``Omega`` is given).
 
-One dense LU solves it (``O((3 n_C)^3)``: about 0.3 s for the 941 contact nodes of the
-paper's section 11, 6 s for 2600; a matrix-free Krylov solve needs a preconditioner for
-the upwind-differenced stick rows, whose circulant embedding is singular at ``nu_x = 0``,
-and is not done yet). Then the sets
+Linear solves. Up to ``Friction.dense_limit`` unknowns (default 1000) one dense LU
+(``O((3 n_C)^3)``); above, restarted GMRES with the nine blocks applied by FFT (three
+forward and three inverse transforms per product, ``O(N)`` memory). Its preconditioner
+undoes the two things that make the system unlike a static contact: the stick rows are
+upwind differences ``u_{i+1} - u_i`` (a circulant embedding of the differenced compliance
+is singular at ``nu_x = 0``), so they are first summed along ``x`` from each run of
+contact nodes' leading end (the exact inverse of the difference, up to the displacement
+just ahead of the run, which is dropped); the displacements so obtained and the gap rows
+are mapped to forces by the inverse, frequency by frequency, of the 3 x 3 circulant
+embedding of the undifferenced compliance; slip nodes then take their force along ``e``
+from their own row ``e . S = mu N``. GMRES solves for the correction to the previous
+active-set iterate, reducing its residual by 1e-10, so the solves sharpen as the slip
+directions settle. Section 11 at 41 x 41: 30-80 GMRES iterations per solve (1800
+without the preconditioner); 257 x 257 (35 000 contact nodes): see ``BENCHMARKS.md``.
+Then the sets
 are updated: tension leaves the contact, penetration joins it; a stick node whose force
 exceeds the cone ``|S| <= mu N`` slips along ``S/|S|``; a slip node whose velocity turns
 against its force ``w . e <= 0`` sticks; the slip directions take ``w/|w|`` (a fixed point
@@ -236,47 +247,65 @@ class _SetSystem:
         gap, ex, ey = (f.ravel()[self.C, None] for f in self.ops.fields(N, Sx, Sy))
         return self.rows(gap, self.ax * ex, self.ax * ey, x[:, None])[:, 0]
 
+    def _runs(self):
+        """Runs of contact nodes along ``x``: for each contact node the column of the
+        first off-contact node at or after it (``K_x`` if none), on the full grid."""
+        if not hasattr(self, "_ahead"):
+            Ky, Kx = self.ops.grid.shape
+            off = np.ones(Ky * Kx, bool)
+            off[self.C] = False
+            nxt = np.where(off.reshape(Ky, Kx), np.arange(Kx)[None, :], Kx)[:, ::-1]
+            self._ahead = np.minimum.accumulate(nxt, axis=1)[:, ::-1]
+        return self._ahead
+
     def _upstream_sum(self, rho):
         """``u`` with ``u_{i+1} - u_i = rho_i`` on each run of contact nodes along ``x``
         and ``u = 0`` at the first node past the run's leading end."""
-        g = self.ops.grid
-        Ky, Kx = g.shape
+        Ky, Kx = self.ops.grid.shape
         r = np.zeros(Ky * Kx)
         r[self.C] = rho
         cs = np.cumsum(r.reshape(Ky, Kx)[:, ::-1], axis=1)[:, ::-1]  # sum over j >= i
-        off = np.ones(Ky * Kx, bool)
-        off[self.C] = False
-        off = off.reshape(Ky, Kx)
-        # index of the first off-contact node at or after each node (Kx if none)
-        nxt = np.where(off, np.arange(Kx)[None, :], Kx)[:, ::-1]
-        nxt = np.minimum.accumulate(nxt, axis=1)[:, ::-1]
-        past = np.take_along_axis(np.hstack([cs, np.zeros((Ky, 1))]), nxt, 1)
+        past = np.take_along_axis(np.hstack([cs, np.zeros((Ky, 1))]), self._runs(), 1)
         return -(cs - past).ravel()[self.C]
 
-    def precondition(self, r):
-        """Approximate inverse: turn the difference rows into displacements by summing
-        them from each run's leading end (neglecting the displacement just ahead of it),
-        map the displacements to forces by the inverse 3 x 3 circulant embedding, then
-        set the slip nodes' force along ``e`` from their first row."""
+    def _to_forces(self, tw, tu, tv, r1):
+        """Unknowns (forces part) from target gap and displacements on ``C`` by the inverse
+        3 x 3 circulant embedding; slip nodes take ``e . S = mu N + r1 / diag``."""
         nC, C, B = self.nC, self.C, self.B
-        rg, rx, ry = r[:nC], r[nC:2 * nC], r[2 * nC:3 * nC]
-        rho_x, rho_y = rx.copy(), ry.copy()
-        rho_x[B], rho_y[B] = -self.ey * ry[B], self.ex * ry[B]
-        g = self.ops.grid
-        Ky, Kx = g.shape
+        Ky, Kx = self.ops.grid.shape
         emb = self.ops.op("ww").embedding
         F = []
-        for target in (rg, self._upstream_sum(rho_x), self._upstream_sum(rho_y)):
+        for target in (tw, tu, tv):
             f = np.zeros(Ky * Kx)
             f[C] = target
             F.append(sfft.rfft2(f.reshape(Ky, Kx), s=emb, workers=-1))
         G = np.einsum("...ij,j...->i...", self.ops.inverse3(), np.stack(F))
-        out = np.empty(self.n)
+        out = np.empty(3 * nC)
         for c in range(3):
             out[c * nC:(c + 1) * nC] = sfft.irfft2(G[c], s=emb, workers=-1)[:Ky, :Kx].ravel()[C]
         sx, sy = out[nC + B], out[2 * nC + B]
-        fix = self.mu * out[B] + rx[B] / self.diag - (self.ex * sx + self.ey * sy)
+        fix = self.mu * out[B] + r1 / self.diag - (self.ex * sx + self.ey * sy)
         out[nC + B], out[2 * nC + B] = sx + fix * self.ex, sy + fix * self.ey
+        return out
+
+    def precondition(self, r):
+        """Approximate inverse: turn the difference rows into displacements by summing
+        them from each run's leading end (dropping the displacement just ahead of it),
+        map the displacements to forces by the inverse 3 x 3 circulant embedding, then
+        set the slip nodes' force along ``e`` from their first row.
+
+        A Woodbury correction for the dropped displacement (one unknown per run and
+        component) was tried and raised the GMRES iterations (78 -> 120 at 61 x 61): a
+        uniform displacement of a run moves the node just ahead of it almost as much, so
+        the correction's small system is nearly singular and amplifies the circulant
+        approximation's error."""
+        nC, B = self.nC, self.B
+        rg, rx, ry = r[:nC], r[nC:2 * nC], r[2 * nC:3 * nC]
+        rho_x, rho_y = rx.copy(), ry.copy()
+        rho_x[B], rho_y[B] = -self.ey * ry[B], self.ex * ry[B]
+        y = self._to_forces(rg, self._upstream_sum(rho_x), self._upstream_sum(rho_y), rx[B])
+        out = np.empty(self.n)
+        out[:3 * nC] = y
         if self.free_d:
             out[self.iD] = r[self.iD]
         if self.free_om:
@@ -376,11 +405,22 @@ def solve_rolling(ops: RollingOperators, profile, arm, ell, radius: float, speed
                        normal.indentation, friction.omega if friction.omega is not None else math.nan,
                        np.zeros(size, bool), (), "dense", 0, radius)
 
-    start = _start_state(N0, ell, V, friction)
     solves = _LinearSolves(friction.dense_limit)
+    starts = [_start_state(N0, ell, V, friction)]
+    coarse = _coarse_start(ops, s, arm, ell, radius, V, friction, load, indentation, N0, progress)
+    if coarse is not None:
+        starts.insert(0, coarse)
     try:
-        N, Sx, Sy, d, om, state, history, h, scale = _active_set(
-            ops, s, reach, ell, V, friction, load, indentation, cons, start, progress, solves)
+        for i, start in enumerate(starts):
+            try:
+                N, Sx, Sy, d, om, state, history, h, scale = _active_set(
+                    ops, s, reach, ell, V, friction, load, indentation, cons, start, progress, solves)
+                break
+            except FrictionNotConverged as exc:
+                if i == len(starts) - 1:
+                    raise
+                if progress:
+                    progress(f"friction: the coarse grid's start failed ({exc}); starting from all stick")
     except LoadingUnreachable:
         raise
     except FrictionNotConverged as exc:
@@ -392,6 +432,45 @@ def solve_rolling(ops: RollingOperators, profile, arm, ell, radius: float, speed
     resid = (max(np.abs(h[contact]).max(initial=0.0), (-h[reach & ~contact]).max(initial=0.0)) / scale,)
     return _finish(ops, s, arm, ell, V, friction, N, Sx, Sy, d, om, stick & contact, tuple(history),
                    "gmres" if solves.used_gmres else "dense", solves.iterations, radius, resid[0])
+
+
+def _coarse_start(ops, s, arm, ell, radius, V, friction, load, indentation, N0, progress):
+    """Start sets from the same problem on every other node (recursively, as the
+    frictionless solver's start): the contact of the fine frictionless solve, in stick
+    where the nearest coarse node (the upstream one between two) sticks or was out of
+    contact, otherwise in slip along the coarse force with ``k = |w| / (mu N)``. Most of
+    the stick/slip border is then in place and the fine grid needs a few iterations for
+    the rest and for the slip directions. ``None`` below 625 nodes, on even-sized grids
+    and when the coarse solve fails."""
+    g = ops.grid
+    Ky, Kx = g.shape
+    if Kx * Ky < 625 or Kx % 2 == 0 or Ky % 2 == 0 or min(Kx, Ky) < 9:
+        return None
+    coarse = Grid(2 * g.spacing_x, 2 * g.spacing_y, g.period_x, g.period_y, g.truncation_x,
+                  g.truncation_y, (Kx + 1) // 2, (Ky + 1) // 2)
+    sub = RollingOperators(coarse, {b: k[::2, ::2] for b, k in ops.kernels.items()})
+
+    def fine(a):
+        return a.reshape(Ky, Kx)[::2, ::2]
+
+    label = f"coarse {coarse.nodes_x} x {coarse.nodes_y}: "
+    try:
+        res = solve_rolling(sub, fine(s), fine(arm), fine(ell), radius, V, friction, load=load,
+                            indentation=indentation,
+                            progress=(lambda m: progress(label + m)) if progress else None)
+    except ContactError:
+        return None
+    jy, ix = (np.arange(Ky) + 1) // 2, (np.arange(Kx) + 1) // 2
+    pick = lambda f: f[np.ix_(jy, ix)].ravel()  # noqa: E731
+    contact = N0 > 0
+    Sx, Sy = pick(res.force_x), pick(res.force_y)
+    wmag, smag = pick(np.hypot(res.slip_x, res.slip_y)), np.hypot(Sx, Sy)
+    slip = contact & pick(res.contact & ~res.stick) & (smag > 0) & (wmag > 0)
+    e = np.zeros((N0.size, 2))
+    k = np.zeros(N0.size)
+    e[slip] = np.stack([Sx, Sy], 1)[slip] / smag[slip, None]
+    k[slip] = wmag[slip] / (friction.mu * N0[slip])
+    return contact, contact & ~slip, e, k
 
 
 def _start_state(N0, ell, V, friction):
@@ -434,6 +513,7 @@ def _active_set(ops, s, reach, ell, V, friction, load, indentation, cons, start,
         system = _SetSystem(ops, s, C, stick, e_full, k_full, mu, ell, V, load, indentation,
                             friction.omega, cons)
         guess = None if it == 1 else system.unknowns(N, Sx, Sy, d, om)
+        lin0 = solves.iterations
         N, Sx, Sy, d, om = solves(system, guess)
         delta, ex, ey = (f.ravel() for f in ops.fields(N.reshape(shape), Sx.reshape(shape), Sy.reshape(shape)))
         h = np.where(reach, s - d + delta, np.inf)
@@ -456,7 +536,8 @@ def _active_set(ops, s, reach, ell, V, friction, load, indentation, cons, start,
         if progress:
             progress(f"friction {it}: {C.size} contact, {int((stick & contact).sum())} stick, "
                      f"Omega = {om:.8g} rad/s, -{int(drop.sum())} +{int(add.sum())} contact, "
-                     f"+{int(to_slip.sum())} slip, +{int(to_stick.sum())} stick, slip misfit {misfit:.2e}")
+                     f"+{int(to_slip.sum())} slip, +{int(to_stick.sum())} stick, slip misfit {misfit:.2e}"
+                     + (f", {solves.iterations - lin0} GMRES iterations" if solves.iterations > lin0 else ""))
         changes = drop.any() or add.any() or to_slip.any() or to_stick.any()
         # with Omega prescribed, a node joining the contact where the rigid creep
         # |V - Omega l| exceeds 1 % of V slips (as in the start state: sliding, braking);
@@ -488,9 +569,10 @@ def _active_set(ops, s, reach, ell, V, friction, load, indentation, cons, start,
         new_slip = new_c & ~new_s
         with np.errstate(invalid="ignore", divide="ignore"):
             e_new = np.stack([Sx, Sy], 1) / smag[:, None]
-            # k = (e . w) / |S|, floored at 1e-3 V / (mu N): a new or barely slipping node
-            # keeps its force near e instead of a free perpendicular component
-            k_new = np.maximum(np.where(slip, np.maximum(wdot, 0.0) / smag**2, 0.0), 1e-3 * V / (mu * N))
+            # k = (e . w) / |S| (Newton) on slipping nodes; a node that starts slipping takes
+            # 1e-3 V / (mu N), so that its force stays near e instead of a free
+            # perpendicular component
+            k_new = np.where(slip & (wdot > 0), wdot / smag**2, 1e-3 * V / (mu * N))
             # such a node joins in slip along w, k = |w| / (mu N), N the smallest contact force
             joining = new_slip & add
             e_new[joining] = np.stack([wx, wy], 1)[joining] / wmag[joining, None]

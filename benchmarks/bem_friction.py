@@ -4,11 +4,14 @@
    Nt = 2000, 41 x 41 nodes): the nine compliance kernels + the frictional solve, the
    first call and the median of warm calls; the energy figure (P_visc + P_fric) / V is
    timed apart (it is an independent check, not needed for R_r).
-2. The largest frictional grid of the dense active-set solver in a few minutes: the same
-   problem on finer grids (``--spacing`` in m, default 0.15 mm: 67 x 67 nodes), its time
-   and peak RSS (resource.getrusage).
+2. A large frictional contact: the same problem on ``--nodes`` x ``--nodes`` nodes
+   (half-width 5.2 mm, a = 10.4 mm / (nodes - 1), Nt = L / (2 a) + 1, as
+   ``bem_large_grid.py``; default 257, i.e. a = 40.6 um), solved by the matrix-free
+   GMRES path (the dense path above ``Friction.dense_limit`` unknowns is not used), its
+   time, active-set and GMRES iterations and peak RSS (resource.getrusage). ``--dense``
+   forces the dense solver instead (the former limit: 81 x 81 took 229 s, 2.9 GB).
 
-Run: ``.venv/bin/python benchmarks/bem_friction.py [--spacing 1.5e-4] [--skip-section11]``.
+Run: ``.venv/bin/python benchmarks/bem_friction.py [--nodes 257] [--skip-section11] [--dense]``.
 """
 
 import argparse
@@ -37,31 +40,37 @@ def section11(repeat: int) -> None:
           f"{time.perf_counter() - t0:.2f} s, of which energy {t['energy_s']:.2f} s")
 
 
-def largest(spacing: float) -> None:
-    half = 5e-3
-    nt = max(2000, int(round(0.2 / (2 * spacing) * 1.25)))
-    grid = Grid.centred((spacing, spacing), (0.2, 0.2), (nt, nt), (half, half))
+def largest(nodes: int, dense: bool) -> None:
+    half = 5.2e-3
+    a = 2 * half / (nodes - 1)
+    nt = int(0.2 / (2 * a)) + 1
+    grid = Grid.centred((a, a), (0.2, 0.2), (nt, nt), (half, half))
     problem = Problem(LAYER, Sphere(0.02), grid, Loading(0.05, load=150.0))
+    friction = Friction(0.2, dense_limit=10**9 if dense else Friction(0.2).dense_limit)
     rss0 = peak_rss_mb()
     t0 = time.perf_counter()
-    res, t = solve_friction(problem, Friction(0.2), energy=False)
+    res, t = solve_friction(problem, friction, energy=False, progress=lambda s: print("  " + s, flush=True))
     total = time.perf_counter() - t0
     n = int(res.contact.sum())
-    print(f"largest dense frictional grid: {grid.nodes_x} x {grid.nodes_y} nodes (a = {spacing * 1e3:.3g} mm, "
-          f"Nt = {nt}), {n} contact nodes ({3 * n + 2} unknowns)")
+    r = res.record
+    print(f"frictional rolling on {grid.nodes_x} x {grid.nodes_y} nodes (a = {a * 1e6:.1f} um, Nt = {nt}), "
+          f"{n} contact nodes ({3 * n + 2} unknowns)")
     print(f"  R_r = {res.rolling_resistance:.5f} N (friction {res.rolling_resistance_friction:.5f} N, "
-          f"stick {res.stick_fraction:.3f}, {res.record.iterations} iterations)")
+          f"Omega {res.omega:.6f} rad/s, stick {res.stick_fraction:.3f})")
+    print(f"  {r.iterations} active-set iterations, {r.linear_solver} {r.linear_iterations} iterations; "
+          f"residuals: gap {r.gap_residual:.1e}, stick {r.stick_residual:.1e}, Coulomb {r.coulomb_residual:.1e}")
     print(f"  kernels {t['kernel_s']:.1f} s + solve {t['solve_s']:.1f} s = {total:.1f} s; "
           f"peak RSS {peak_rss_mb():.0f} MB (before: {rss0:.0f} MB)")
 
 
 if __name__ == "__main__":
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--spacing", type=float, default=1.5e-4)
+    ap.add_argument("--nodes", type=int, default=257)
+    ap.add_argument("--dense", action="store_true")
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--skip-section11", action="store_true")
     args = ap.parse_args()
     print(machine())
     if not args.skip_section11:
         section11(args.repeat)
-    largest(args.spacing)
+    largest(args.nodes, args.dense)

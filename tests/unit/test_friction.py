@@ -269,3 +269,22 @@ def test_matrix_free_solve_equals_the_dense_solve(kernels, mode, omega):
         np.testing.assert_allclose(a, b, rtol=0, atol=1e-9 * scale)
     assert abs(it.rolling_resistance - dense.rolling_resistance) < 1e-9 * abs(dense.rolling_resistance)
     assert abs(it.omega - dense.omega) < 1e-9 * abs(dense.omega)
+
+
+def test_coarse_grid_start_ends_on_the_same_state(monkeypatch):
+    """Section 11 at 41 x 41 (Nt = 500): starting the active set from the solution on
+    every other node gives the all-stick start's state (10 fine-grid iterations either
+    way here; at 257 x 257 the coarse start took 19 against 31)."""
+    import bem.rolling as rolling
+
+    grid = Grid.centred((0.25e-3, 0.25e-3), (0.2, 0.2), (500, 500), (5e-3, 5e-3))
+    p = Problem(LAYER, Sphere(0.02), grid, Loading(V, load=150.0))
+    kern = influence_kernels(grid, LAYER, V, blocks=BLOCKS)
+    lines = []
+    coarse, _ = solve_friction(p, Friction(0.2), kernels=kern, energy=False, progress=lines.append)
+    assert any(line.startswith("coarse 21 x 21: friction") for line in lines)
+    monkeypatch.setattr(rolling, "_coarse_start", lambda *args: None)
+    direct, _ = solve_friction(p, Friction(0.2), kernels=kern, energy=False)
+    assert np.array_equal(coarse.stick, direct.stick) and np.array_equal(coarse.contact, direct.contact)
+    np.testing.assert_allclose(coarse.force_x, direct.force_x, rtol=0, atol=1e-9 * direct.force.max())
+    assert abs(coarse.rolling_resistance - direct.rolling_resistance) < 1e-10 * direct.rolling_resistance
