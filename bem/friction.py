@@ -134,7 +134,9 @@ class FrictionRecord:
 
     ``iterations`` of the active set; ``history`` one tuple per iteration
     ``(contact nodes, stick nodes, largest slip-direction change, Omega)``;
-    ``linear_solver`` (``dense`` or ``gmres``) and ``linear_iterations``; residuals at the
+    ``linear_solver`` (``dense`` or ``gmres``) and ``linear_iterations`` (GMRES, summed
+    over the active-set iterations); all on the solve's own grid, not counting the
+    coarse-grid start (whose lines the progress callback shows); residuals at the
     end: ``gap_residual`` (max ``|h|`` on contact and penetration elsewhere, relative to
     ``d``), ``stick_residual`` (max ``|w| / V`` on stick nodes), ``coulomb_residual``
     (max of ``|S| / (mu N) - 1`` on stick nodes and of the slip-direction misfit).

@@ -569,10 +569,11 @@ def _active_set(ops, s, reach, ell, V, friction, load, indentation, cons, start,
         new_slip = new_c & ~new_s
         with np.errstate(invalid="ignore", divide="ignore"):
             e_new = np.stack([Sx, Sy], 1) / smag[:, None]
-            # k = (e . w) / |S| (Newton) on slipping nodes; a node that starts slipping takes
-            # 1e-3 V / (mu N), so that its force stays near e instead of a free
-            # perpendicular component
-            k_new = np.where(slip & (wdot > 0), wdot / smag**2, 1e-3 * V / (mu * N))
+            # k = (e . w) / |S|, floored at 1e-3 V / (mu N): a new or barely slipping node
+            # keeps its force near e instead of a free perpendicular component (without the
+            # floor, Newton's own slope, the 257 x 257 run oscillated with slip misfits of
+            # 1e2-7e2 after the sets had settled)
+            k_new = np.maximum(np.where(slip, np.maximum(wdot, 0.0) / smag**2, 0.0), 1e-3 * V / (mu * N))
             # such a node joins in slip along w, k = |w| / (mu N), N the smallest contact force
             joining = new_slip & add
             e_new[joining] = np.stack([wx, wy], 1)[joining] / wmag[joining, None]
