@@ -187,6 +187,17 @@ class _LinearSolver:
         return (x[:n], x[n]) if bordered else (x, indentation)
 
 
+def _coarse_grid(grid: Grid) -> Grid | None:
+    """Every other node of ``grid`` (same period and truncation), or ``None`` when the grid
+    is small (< 625 nodes, or < 9 a side) or even-sized: the coarse level of the solvers'
+    multilevel starts."""
+    Ky, Kx = grid.shape
+    if Kx * Ky < 625 or Kx % 2 == 0 or Ky % 2 == 0 or min(Kx, Ky) < 9:
+        return None
+    return Grid(2 * grid.spacing_x, 2 * grid.spacing_y, grid.period_x, grid.period_y,
+                grid.truncation_x, grid.truncation_y, (Kx + 1) // 2, (Ky + 1) // 2)
+
+
 def _coarse_start(operator, s, reachable, load, indentation, dense_limit, rtol):
     """Trial contact set from the same problem on every other node (recursively).
 
@@ -197,10 +208,9 @@ def _coarse_start(operator, s, reachable, load, indentation, dense_limit, rtol):
     """
     grid = operator.grid
     Ky, Kx = grid.shape
-    if Kx * Ky < 625 or Kx % 2 == 0 or Ky % 2 == 0 or min(Kx, Ky) < 9:
+    coarse = _coarse_grid(grid)
+    if coarse is None:
         return None
-    coarse = Grid(2 * grid.spacing_x, 2 * grid.spacing_y, grid.period_x, grid.period_y,
-                  grid.truncation_x, grid.truncation_y, (Kx + 1) // 2, (Ky + 1) // 2)
     sub = ComplianceOperator(coarse, operator.kernel[::2, ::2])
     prof = np.where(reachable, s, np.inf).reshape(Ky, Kx)[::2, ::2]
     try:

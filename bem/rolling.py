@@ -61,7 +61,7 @@ import numpy as np
 import scipy.fft as sfft
 from scipy.sparse.linalg import LinearOperator, gmres
 
-from .contact import ContactAtEdge, ContactError, solve_normal, _edge_nodes
+from .contact import ContactAtEdge, ContactError, solve_normal, _coarse_grid, _edge_nodes
 from .energy import viscous_dissipation
 from .friction import Friction, FrictionalContact, FrictionNotConverged, FrictionRecord, LoadingUnreachable
 from .grid import Grid
@@ -442,12 +442,10 @@ def _coarse_start(ops, s, arm, ell, radius, V, friction, load, indentation, N0, 
     the stick/slip border is then in place and the fine grid needs a few iterations for
     the rest and for the slip directions. ``None`` below 625 nodes, on even-sized grids
     and when the coarse solve fails."""
-    g = ops.grid
-    Ky, Kx = g.shape
-    if Kx * Ky < 625 or Kx % 2 == 0 or Ky % 2 == 0 or min(Kx, Ky) < 9:
+    Ky, Kx = ops.grid.shape
+    coarse = _coarse_grid(ops.grid)
+    if coarse is None:
         return None
-    coarse = Grid(2 * g.spacing_x, 2 * g.spacing_y, g.period_x, g.period_y, g.truncation_x,
-                  g.truncation_y, (Kx + 1) // 2, (Ky + 1) // 2)
     sub = RollingOperators(coarse, {b: k[::2, ::2] for b, k in ops.kernels.items()})
 
     def fine(a):
