@@ -1,4 +1,9 @@
-"""Figures of a contact result (matplotlib, written to PNG)."""
+"""Figures of a contact result (matplotlib, written to PNG).
+
+The figures are :class:`matplotlib.figure.Figure` objects saved directly (no pyplot,
+no ``matplotlib.use``): plotting never switches the backend of the caller's session
+(a notebook keeps its own) and leaves no figure open in pyplot's registry.
+"""
 
 from __future__ import annotations
 
@@ -10,29 +15,22 @@ __all__ = ["plot_normal_contact", "plot_frictional_contact"]
 
 
 def _save(fig, path, dpi: int) -> Path:
-    """Write ``fig`` to ``path`` (PNG), making its folder; close it; return the path."""
-    import matplotlib.pyplot as plt
-
+    """Write ``fig`` to ``path`` (PNG), making its folder; return the path."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(path, dpi=dpi)
-    plt.close(fig)
     return path
-
-
 
 
 def plot_normal_contact(result, path: str | Path, title: str = "") -> Path:
     """Pressure map and its ``y = 0`` profile, side by side; returns the path."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    from matplotlib.figure import Figure
 
     g = result.grid
     x_mm, y_mm = g.x * 1e3, g.y * 1e3
     p_mpa = result.pressure / 1e6
-    fig, (ax0, ax1) = plt.subplots(1, 2, figsize=(11, 4.4), constrained_layout=True)
+    fig = Figure(figsize=(11, 4.4), layout="constrained")
+    ax0, ax1 = fig.subplots(1, 2)
     mesh = ax0.pcolormesh(x_mm, y_mm, p_mpa, shading="nearest", cmap="viridis")
     if result.contact.any():
         ax0.contour(x_mm, y_mm, result.contact.astype(float), levels=[0.5], colors="w", linewidths=0.8)
@@ -61,17 +59,16 @@ def plot_frictional_contact(result, path: str | Path, title: str = "", max_arrow
     contact; the map colours the nodes out of contact, in stick and in slip, with the slip
     velocity's direction drawn on the slip nodes.
     """
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
     from matplotlib.colors import ListedColormap
+    from matplotlib.figure import Figure
+    from matplotlib.patches import Patch
 
     g = result.grid
     x_mm, y_mm = g.x * 1e3, g.y * 1e3
     X, Y = np.meshgrid(x_mm, y_mm)
     contact = result.contact
-    fig, axes = plt.subplots(1, 3, figsize=(16, 4.8), constrained_layout=True)
+    fig = Figure(figsize=(16, 4.8), layout="constrained")
+    axes = fig.subplots(1, 3)
     ax0, ax1, ax2 = axes
     mesh = ax0.pcolormesh(x_mm, y_mm, result.pressure / 1e6, shading="nearest", cmap="viridis")
     fig.colorbar(mesh, ax=ax0, label="contact pressure (MPa)")
@@ -98,8 +95,6 @@ def plot_frictional_contact(result, path: str | Path, title: str = "", max_arrow
     if slip.any():
         ax2.quiver(X[slip], Y[slip], result.slip_x[slip], result.slip_y[slip], color="k",
                    angles="xy", pivot="middle")
-    from matplotlib.patches import Patch
-
     ax2.legend(handles=[Patch(color="#4c72b0", label=f"stick ({result.stick_fraction:.1%})"),
                         Patch(color="#dd8452", label="slip (arrows: slip velocity)")],
                loc="upper right", fontsize=8)

@@ -10,13 +10,15 @@ __all__ = ["plot_result", "write_vtu"]
 
 
 def plot_result(result: ContactResult, path) -> None:
-    """Pressure profile (kPa against mm) and deformed surface u_z (um) to ``path`` (PNG)."""
-    import matplotlib
+    """Pressure profile (kPa against mm) and deformed surface u_z (um) to ``path`` (PNG).
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    A bare :class:`matplotlib.figure.Figure` (no pyplot, no ``matplotlib.use``): the
+    caller's backend is left as it is.
+    """
+    from matplotlib.figure import Figure
 
-    fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(7, 7), sharex=True)
+    fig = Figure(figsize=(7, 7))
+    ax1, ax2 = fig.subplots(2, 1, sharex=True)
     style = dict(marker="o", ms=2, lw=0.8) if result.mesh.model == "axisymmetric" \
         else dict(marker=".", ms=2, lw=0)
     order = np.argsort(result.radius)
@@ -35,7 +37,6 @@ def plot_result(result: ContactResult, path) -> None:
         ax.grid(alpha=0.3)
     fig.tight_layout()
     fig.savefig(path, dpi=120)
-    plt.close(fig)
 
 
 def write_vtu(result: ContactResult, path) -> None:

@@ -12,13 +12,12 @@ import numpy as np
 __all__ = ["write_report"]
 
 
-def _plt():
-    import matplotlib
+def _figure(figsize):
+    """A bare :class:`matplotlib.figure.Figure` with constrained layout: no pyplot and no
+    ``matplotlib.use``, so writing a report never switches the caller's backend."""
+    from matplotlib.figure import Figure
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    return plt
+    return Figure(figsize=figsize, layout="constrained")
 
 
 def _reference_profile(result):
@@ -33,10 +32,10 @@ def _reference_profile(result):
 
 
 def _figures(result, out: Path) -> list[str]:
-    plt = _plt()
     files = []
     if result.kind == "stationary" and result.runs:
-        fig, ax = plt.subplots(figsize=(6.4, 4.2), constrained_layout=True)
+        fig = _figure((6.4, 4.2))
+        ax = fig.subplots()
         if "bem" in result.runs:
             b = result.runs["bem"][-1]
             ax.plot(b.r * 1e3, b.pressure / 1e6, ".", ms=2, alpha=0.4, label=f"BEM nodes, a = {b.size * 1e3:g} mm")
@@ -53,7 +52,6 @@ def _figures(result, out: Path) -> list[str]:
         ax.grid(alpha=0.3)
         files.append(f"{result.name}-profiles.png")
         fig.savefig(out / files[-1], dpi=110)
-        plt.close(fig)
 
         name, ref = _reference_profile(result)
         if "bem" in result.runs and ref is not None:
@@ -62,7 +60,8 @@ def _figures(result, out: Path) -> list[str]:
             peak = float(np.max(ref(np.linspace(0, b.r.max(), 500))))
             diff = (b.field - ref(np.hypot(X, Y))) / peak * 100
             lim = max(float(np.abs(diff).max()), 1e-6)
-            fig, ax = plt.subplots(figsize=(5.6, 4.6), constrained_layout=True)
+            fig = _figure((5.6, 4.6))
+            ax = fig.subplots()
             m = ax.pcolormesh(b.grid.x * 1e3, b.grid.y * 1e3, diff, cmap="RdBu_r", vmin=-lim, vmax=lim, shading="nearest")
             fig.colorbar(m, ax=ax, label=f"(BEM - {name}) / peak (%)")
             ax.set_aspect("equal")
@@ -70,9 +69,9 @@ def _figures(result, out: Path) -> list[str]:
             ax.set_ylabel("y (mm)")
             files.append(f"{result.name}-difference.png")
             fig.savefig(out / files[-1], dpi=110)
-            plt.close(fig)
 
-        fig, ax = plt.subplots(figsize=(6.4, 4.2), constrained_layout=True)
+        fig = _figure((6.4, 4.2))
+        ax = fig.subplots()
         for method, runs in result.runs.items():
             if len(runs) < 3:
                 continue
@@ -92,12 +91,12 @@ def _figures(result, out: Path) -> list[str]:
             ax.legend(fontsize=8)
             files.append(f"{result.name}-convergence.png")
             fig.savefig(out / files[-1], dpi=110)
-        plt.close(fig)
 
     if result.kind == "sweep" and result.extra.get("sweep"):
         rows = result.extra["sweep"]
         H = np.array([h for h, _ in rows]) * 1e3
-        fig, axes = plt.subplots(1, 2, figsize=(10, 4), constrained_layout=True)
+        fig = _figure((10, 4))
+        axes = fig.subplots(1, 2)
         for q, ax in zip(("contact_radius", "indentation"), axes):
             for method, style in (("bem", "o-"), ("fem", "s--")):
                 vals = [part.runs[method][-1].scalars[q] * 1e3 for _, part in rows if method in part.runs]
@@ -109,11 +108,11 @@ def _figures(result, out: Path) -> list[str]:
             ax.legend()
         files.append(f"{result.name}-sweep.png")
         fig.savefig(out / files[-1], dpi=110)
-        plt.close(fig)
 
     if result.kind == "table1" and result.extra.get("table1"):
         cells = result.extra["table1"]
-        fig, ax = plt.subplots(figsize=(6.4, 4), constrained_layout=True)
+        fig = _figure((6.4, 4))
+        ax = fig.subplots()
         for a in sorted({c[0] for c in cells}, reverse=True):
             sel = [c for c in cells if c[0] == a]
             ax.plot([c[1] for c in sel], [(c[2] - c[3]) * 1e4 for c in sel], "o-", label=f"a = {a:g} mm")
@@ -124,7 +123,6 @@ def _figures(result, out: Path) -> list[str]:
         ax.grid(alpha=0.3)
         files.append(f"{result.name}-table1.png")
         fig.savefig(out / files[-1], dpi=110)
-        plt.close(fig)
     return files
 
 
