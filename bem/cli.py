@@ -9,6 +9,8 @@ from pathlib import Path
 
 import numpy as np
 
+import casefile
+
 from .case import friction_from_config, problem_from_config, read_case
 from .contact import ContactError
 from .problem import solve_frictionless
@@ -78,16 +80,48 @@ def _friction_summary(problem, result, timings) -> dict:
     return out
 
 
+PLOT_SUFFIXES = (".png", ".pdf", ".svg")
+
+
+def _write_outputs(args, friction, result, summary) -> list[str]:
+    """Write ``--fields`` and ``--plot``; returns the messages of those that failed."""
+    failed = []
+    if args.fields:
+        extra = {} if friction is None else {
+            "force_x": result.force_x, "force_y": result.force_y, "stick": result.stick,
+            "slip_x": result.slip_x, "slip_y": result.slip_y,
+            "displacement_x": result.displacement_x, "displacement_y": result.displacement_y}
+        try:
+            np.savez_compressed(
+                args.fields, x=result.grid.x, y=result.grid.y, force=result.force,
+                pressure=result.pressure, deflection=result.deflection, gap=result.gap,
+                contact=result.contact, summary=json.dumps(summary), **extra,
+            )
+        except OSError as exc:
+            failed.append(f"--fields {args.fields} was not written: {exc}")
+    if args.plot:
+        from .plots import plot_frictional_contact, plot_normal_contact
+
+        try:
+            (plot_normal_contact if friction is None else plot_frictional_contact)(result, args.plot)
+        except (OSError, ValueError) as exc:
+            failed.append(f"--plot {args.plot} was not written: {exc}")
+    return failed
+
+
 def main(argv: list[str] | None = None) -> int:
+    """Exit status: 0 done, 1 the solve failed or an output could not be written (the
+    result is printed first), 2 bad input or usage."""
     parser = argparse.ArgumentParser(prog="bem", description=__doc__)
     sub = parser.add_subparsers(dest="command", required=True)
     s = sub.add_parser("solve", help="solve a case file")
     s.add_argument("case", type=Path)
     s.add_argument("--set", action="append", default=[], metavar="SECTION.KEY=VALUE",
-                   help="override an entry of the case file (value parsed as TOML)")
+                   help="override an entry of the case file (value parsed as TOML; a bare word for a "
+                        "string key)")
     s.add_argument("--json", action="store_true", help="print one JSON object on stdout")
     s.add_argument("--plot", type=Path, help="write the pressure map and y = 0 profile, or with friction the pressure "
-                   "map, tangential traction vectors and stick/slip map (PNG)")
+                   "map, tangential traction vectors and stick/slip map (PNG, PDF or SVG)")
     s.add_argument("--fields", type=Path, help="save nodal coordinates and fields (NPZ)")
     s.add_argument("--quiet", action="store_true", help="no progress lines on stderr")
     args = parser.parse_args(argv)
@@ -97,40 +131,30 @@ def main(argv: list[str] | None = None) -> int:
             print(line, file=sys.stderr, flush=True)
 
     try:
-        config, base = read_case(args.case, args.set)
-        problem, auto = problem_from_config(config, base)
+        casefile.check_output(args.plot, PLOT_SUFFIXES, "--plot")
+        casefile.check_output(args.fields, (".npz",), "--fields")
+        config = read_case(args.case, args.set)
+        problem, auto = problem_from_config(config)
         friction = friction_from_config(config)
+    except ValueError as exc:  # casefile.CaseFileError, and the rules of bem's own inputs
+        print(f"bem: error: {exc}", file=sys.stderr)
+        return 2
+    try:
         if friction is None:
             result, timings = solve_frictionless(problem, progress=progress, grow=auto)
         else:
             from .rolling import solve_friction
 
             result, timings = solve_friction(problem, friction, progress=progress)
-    except FileNotFoundError as exc:
-        print(f"bem: {exc}", file=sys.stderr)
+    except ValueError as exc:
+        print(f"bem: error: {exc}", file=sys.stderr)
         return 2
-    except (ValueError, TypeError, ContactError) as exc:
-        print(f"bem: {type(exc).__name__}: {exc}", file=sys.stderr)
-        return 2
+    except ContactError as exc:
+        print(f"bem: error: {type(exc).__name__}: {exc}", file=sys.stderr)
+        return 1
     summary = _summary(problem, result, timings) if friction is None else _friction_summary(problem, result, timings)
-    if args.fields:
-        args.fields.parent.mkdir(parents=True, exist_ok=True)
-        extra = {} if friction is None else {
-            "force_x": result.force_x, "force_y": result.force_y, "stick": result.stick,
-            "slip_x": result.slip_x, "slip_y": result.slip_y,
-            "displacement_x": result.displacement_x, "displacement_y": result.displacement_y}
-        np.savez_compressed(
-            args.fields, x=result.grid.x, y=result.grid.y, force=result.force,
-            pressure=result.pressure, deflection=result.deflection, gap=result.gap,
-            contact=result.contact, summary=json.dumps(summary), **extra,
-        )
-    if args.plot:
-        from .plots import plot_frictional_contact, plot_normal_contact
-
-        (plot_normal_contact if friction is None else plot_frictional_contact)(result, args.plot)
-        progress(f"wrote {args.plot}")
     if args.json:
-        print(json.dumps(summary, indent=2))
+        print(json.dumps(summary, indent=2, allow_nan=False))
     else:
         print(f"rolling resistance  {result.rolling_resistance:.6g} N")
         print(f"indentation         {result.indentation:.6g} m")
@@ -145,7 +169,14 @@ def main(argv: list[str] | None = None) -> int:
             print(f"driving force       {result.driving_force:.6g} N")
             print(f"driving torque      {result.driving_torque:.6g} N m")
             print(f"stick fraction      {result.stick_fraction:.4g}")
-    return 0
+    sys.stdout.flush()
+    failed = _write_outputs(args, friction, result, summary)
+    for message in failed:
+        print(f"bem: error: the result above was computed, but {message}", file=sys.stderr)
+    for path in (args.fields, args.plot):
+        if path and not any(str(path) in m for m in failed):
+            progress(f"wrote {path}")
+    return 1 if failed else 0
 
 
 if __name__ == "__main__":

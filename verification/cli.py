@@ -34,7 +34,11 @@ def main(argv: list[str] | None = None) -> int:
                 print(f"verify: unknown case {name!r}; known: {', '.join(sorted(by_name))}", file=sys.stderr)
                 return 2
         paths = chosen
-    cases = [load_case(p) for p in paths]
+    try:
+        cases = [load_case(p) for p in paths]
+    except ValueError as exc:  # casefile.CaseFileError: a case that breaks the schema
+        print(f"verify: error: {exc}", file=sys.stderr)
+        return 2
     if args.quick and not args.case:
         cases = [c for c in cases if c.get("quick", False)]
     if not cases:

@@ -19,6 +19,8 @@ from typing import Callable
 
 import numpy as np
 
+import casefile
+
 from . import analytic
 from .metrics import fit_contact_radius, pressure_difference, richardson
 
@@ -98,11 +100,18 @@ def list_cases(directory: Path = CASES_DIR) -> list[Path]:
 
 
 def load_case(path: Path) -> dict:
-    with Path(path).open("rb") as fh:
-        case = tomllib.load(fh)
-    for key in ("name", "title", "kind", "gates"):
+    """A verification case; its ``[problem]`` is checked against the case-file schema
+    (:mod:`casefile`), with paths resolved against the case file's folder."""
+    path = Path(path)
+    try:
+        with path.open("rb") as fh:
+            case = tomllib.load(fh)
+    except tomllib.TOMLDecodeError as exc:
+        raise casefile.CaseFileError(f"{path}: not a valid TOML file: {exc}") from None
+    for key in ("name", "title", "kind", "gates", "problem"):
         if key not in case:
-            raise ValueError(f"case {path} needs '{key}'")
+            raise casefile.CaseFileError(f"{path}: a verification case needs '{key}'")
+    case["problem"] = casefile.validate(case["problem"], source=f"{path} [problem]", folder=path.parent)
     return case
 
 
@@ -138,20 +147,15 @@ def run_fem(problem_cfg: dict, fem_cfg: dict, size: float) -> Run:
     """The axisymmetric (or 3D) FEM with element size ``size`` (m) at the contact."""
     import fem_reference as fr
 
-    p = problem_cfg
+    from fem_reference.case import problem_from_dict
+
     settings = {k: v for k, v in fem_cfg.items() if k not in ("element_sizes",)}
-    problem = fr.ContactProblem(
-        fr.Layer(p["layer"]["thickness"]),
-        fr.ElasticMaterial(p["material"]["shear_modulus"]),
-        fr.Indenter(p["indenter"]["shape"], p["indenter"]["radius"]),
-        fr.Loading(load=p["loading"].get("load"), indentation=p["loading"].get("indentation")),
-        fem=fr.FemSettings(element_size=size, **settings),
-    )
+    problem = problem_from_dict({**problem_cfg, "fem": {**settings, "element_size": size}})
     t = time.perf_counter()
     res = fr.solve(problem)
     seconds = time.perf_counter() - t
     # the same radius definition as for the BEM, from the FEM's own surface gap
-    ind = fr.Indenter(p["indenter"]["shape"], p["indenter"]["radius"])
+    ind = problem.indenter
     rs = np.asarray(res.surface_radius)
     gap = ind.profile(np.minimum(rs, 0.99 * ind.radius)) - res.indentation - np.asarray(res.surface_uz)
     r_contact = float(np.max(res.radius[res.pressure > 0]))

@@ -1,0 +1,274 @@
+"""Read a case file, apply ``--set`` overrides, and check it against :data:`SCHEMA`.
+
+Every error is a :class:`CaseFileError` naming the file, the section and the key, the
+value and the rule. Relative paths in a file resolve against the file's folder; paths
+given with ``--set`` resolve against the working folder (where the command was typed).
+"""
+
+from __future__ import annotations
+
+import copy
+import difflib
+import math
+import os
+import tomllib
+from pathlib import Path
+from typing import Iterable
+
+from .schema import RULES, SCHEMA, TOOLS, Key, Section, section
+
+__all__ = ["CaseFileError", "read", "validate", "parse_override", "apply_overrides", "check_output"]
+
+
+class CaseFileError(ValueError):
+    """A case file, or an override of it, that breaks the schema."""
+
+
+def _show(value) -> str:
+    """A value as TOML writes it, with its type when that is the point."""
+    if isinstance(value, bool):
+        return f"{str(value).lower()} (a boolean)"
+    if isinstance(value, str):
+        return f"{value!r} (a string)"
+    if isinstance(value, dict):
+        return "a table"
+    if isinstance(value, list):
+        return f"{value!r} (a list)"
+    return repr(value)
+
+
+def _hint(name: str, known: Iterable[str]) -> str:
+    close = difflib.get_close_matches(name, list(known), n=1, cutoff=0.6)
+    return f" (did you mean {close[0]}?)" if close else ""
+
+
+def _is_number(value) -> bool:
+    return isinstance(value, (int, float)) and not isinstance(value, bool)
+
+
+def _check_value(where: str, key: Key, value, folder: Path):
+    """``value`` checked against ``key``; returns it (paths resolved to absolute ones)."""
+    unit = "" if key.unit == "-" else f" ({key.unit})"
+    if key.kind in ("number", "integer"):
+        wanted = "an integer" if key.kind == "integer" else "a number"
+        if not _is_number(value) or (key.kind == "integer" and not isinstance(value, int)):
+            raise CaseFileError(f"{where} must be {wanted}{unit}, got {_show(value)}")
+        if not math.isfinite(value):
+            raise CaseFileError(f"{where} must be finite{unit}, got {value!r}")
+        _check_rule(where, key, value)
+        return value
+    if key.kind == "numbers":
+        if not isinstance(value, list) or not value or not all(_is_number(v) for v in value):
+            raise CaseFileError(f"{where} must be a non-empty list of numbers{unit}, got {_show(value)}")
+        for v in value:
+            if not math.isfinite(v):
+                raise CaseFileError(f"{where} must hold finite numbers{unit}, got {v!r}")
+            _check_rule(where, key, v)
+        return value
+    if not isinstance(value, str) or (key.kind == "path" and not value.strip()):
+        raise CaseFileError(f"{where} must be a {'path' if key.kind == 'path' else 'string'}, got {_show(value)}")
+    if key.choices and value not in key.choices:
+        options = ", ".join(f'"{c}"' for c in key.choices)
+        raise CaseFileError(f"{where} must be one of {options}, got {value!r}{_hint(value, key.choices)}")
+    if key.kind == "path":
+        path = (folder / value).resolve()
+        if not path.exists():
+            raise CaseFileError(f"{where}: file {str(path)!r} not found (paths in a case file are relative "
+                                "to its folder)")
+        if not path.is_file():
+            raise CaseFileError(f"{where}: {str(path)!r} is a folder, not a file")
+        return str(path)
+    return value
+
+
+def _check_rule(where: str, key: Key, value) -> None:
+    if (key.rule == ">0" and not value > 0) or (key.rule == ">=0" and not value >= 0):
+        unit = "" if key.unit == "-" else f" {key.unit}"
+        raise CaseFileError(f"{where} must be {RULES[key.rule]}{unit}, got {value!r}")
+
+
+def _check_section(source: str, spec: Section, table: dict, folder: Path) -> dict:
+    out = dict(table)
+    variant = None
+    if spec.selector is not None:
+        sel = spec.key(spec.selector)
+        chosen = table.get(spec.selector, sel.default)
+        if chosen is None:
+            raise CaseFileError(f"{source}: [{spec.name}] needs {spec.selector} (one of "
+                                f"{', '.join(spec.variants)})")
+        variant = _check_value(f"{source}: [{spec.name}] {spec.selector}", sel, chosen, folder)
+        out[spec.selector] = variant  # a default selector is written out, so every reader sees it
+    known = [k.name for k in spec.keys] + (
+        [k.name for k in spec.variants[variant].keys] if variant else [])
+    for name, value in table.items():
+        key = spec.key(name, variant)
+        where = f"{source}: [{spec.name}] {name}"
+        if key is None:
+            more = f" for {spec.selector} = \"{variant}\"" if variant else ""
+            elsewhere = "" if not spec.all_keys(name) else (
+                f"; {name} belongs to another {spec.selector}")
+            raise CaseFileError(f"{source}: unknown key [{spec.name}] {name}{more}{elsewhere}; known keys: "
+                                f"{', '.join(known)}{_hint(name, known)}")
+        out[name] = _check_value(where, key, value, folder)
+    keys = spec.keys + (spec.variants[variant].keys if variant else ())
+    for key in keys:
+        if key.required and key.name not in table and key.default is None:
+            unit = "" if key.unit == "-" else f" ({key.unit})"
+            raise CaseFileError(f"{source}: [{spec.name}] needs {key.name}{unit}: {key.doc}")
+    for group in spec.one_of:
+        given = [k for k in group if k in table]
+        if len(given) != 1:
+            raise CaseFileError(f"{source}: [{spec.name}] needs exactly one of {' and '.join(group)}, "
+                                f"got {', '.join(given) if given else 'neither'}")
+    return out
+
+
+def _for_tool(source: str, data: dict, tool: str) -> dict:
+    """Keep what ``tool`` reads; an error for physics it cannot solve, never a silent drop."""
+    command = TOOLS[tool]
+    out = {}
+    for spec in SCHEMA:
+        if spec.name not in data:
+            if tool in spec.required_by:
+                raise CaseFileError(f"{source}: {command} needs a [{spec.name}] section ({spec.doc})")
+            continue
+        table = data[spec.name]
+        if tool not in spec.readers:
+            if spec.discretization:
+                continue  # another tool's discretization
+            others = " and ".join(TOOLS[t] for t in spec.readers)
+            raise CaseFileError(f"{source}: {command} cannot solve [{spec.name}] ({spec.doc}); it is read by "
+                                f"{others} only. Remove the section, or use {others}")
+        if spec.selector is not None:
+            variant = table.get(spec.selector, spec.key(spec.selector).default)
+            if tool not in spec.variants[variant].readers:
+                supported = [v for v, var in spec.variants.items() if tool in var.readers]
+                raise CaseFileError(f"{source}: {command} cannot solve [{spec.name}] {spec.selector} = "
+                                    f"\"{variant}\"; it reads {', '.join(supported)}")
+        for name in table:
+            key = spec.key(name, table.get(spec.selector) if spec.selector else None)
+            if tool not in key.readers:
+                raise CaseFileError(f"{source}: {command} does not read [{spec.name}] {name}; remove it")
+        out[spec.name] = table
+    return out
+
+
+def validate(data: dict, tool: str | None = None, *, source: str = "case", folder: str | Path = ".") -> dict:
+    """Check a parsed case against the schema and return a checked copy.
+
+    Parameters
+    ----------
+    data : dict
+        Sections as tables (the TOML structure).
+    tool : {"bem", "fem"}, optional
+        Also check what this tool needs and reads, and drop the other tool's
+        discretization section.
+    source : str
+        What the errors name (the file).
+    folder : path
+        Folder that relative paths resolve against (the case file's).
+
+    Raises
+    ------
+    CaseFileError
+        Unknown section or key, wrong type (a boolean is not a number), value out of range,
+        missing required key, a file that does not exist, physics the tool cannot solve.
+    """
+    if tool is not None and tool not in TOOLS:
+        raise ValueError(f"tool must be one of {', '.join(TOOLS)}, got {tool!r}")
+    if not isinstance(data, dict):
+        raise CaseFileError(f"{source}: a case is a set of [sections], got {_show(data)}")
+    known = [s.name for s in SCHEMA]
+    out = {}
+    for name, table in data.items():
+        spec = section(name)
+        if spec is None:
+            raise CaseFileError(f"{source}: unknown section [{name}]; known sections: {', '.join(known)}"
+                                f"{_hint(name, known)}")
+        if not isinstance(table, dict):
+            raise CaseFileError(f"{source}: [{name}] must be a table of keys, got {_show(table)}")
+        out[name] = _check_section(source, spec, table, Path(folder))
+    return copy.deepcopy(_for_tool(source, out, tool) if tool else out)
+
+
+def parse_override(text: str) -> tuple[str, str, object]:
+    """``"section.key=value"`` as ``(section, key, value)``; the value is parsed as TOML,
+    or kept as a bare string where the key takes a string or a path.
+
+    Raises
+    ------
+    CaseFileError
+        A malformed assignment, or a bare word where the key takes a number.
+    """
+    name, sep, raw = text.partition("=")
+    sec, dot, key = name.strip().partition(".")
+    if not sep or not dot or not sec or not key or "." in key:
+        raise CaseFileError(f"--set expects section.key=value, got {text!r}")
+    raw = raw.strip()
+    try:
+        value = tomllib.loads(f"v = {raw}")["v"]
+    except tomllib.TOMLDecodeError:
+        spec = section(sec)
+        kinds = {k.kind for k in spec.all_keys(key)} if spec else set()
+        if not kinds or kinds <= {"string", "path"}:
+            value = raw  # a bare word for a string key (an unknown key is reported later)
+        else:
+            raise CaseFileError(f"--set {sec}.{key}={raw}: [{sec}] {key} takes "
+                                f"{' or '.join(sorted(kinds))}, and {raw!r} is not one") from None
+    spec = section(sec)
+    if spec is not None and isinstance(value, str) and {k.kind for k in spec.all_keys(key)} == {"path"}:
+        value = str(Path(value).resolve())  # a path typed on the command line: the working folder's
+    return sec, key, value
+
+
+def apply_overrides(data: dict, overrides: Iterable[str]) -> dict:
+    """``data`` with each ``section.key=value`` of ``overrides`` set (a new dict)."""
+    out = copy.deepcopy(data)
+    for text in overrides:
+        sec, key, value = parse_override(text)
+        table = out.setdefault(sec, {})
+        if not isinstance(table, dict):
+            raise CaseFileError(f"--set {text}: [{sec}] is not a table")
+        table[key] = value
+    return out
+
+
+def read(path: str | Path, overrides: Iterable[str] = (), tool: str | None = None) -> dict:
+    """Read the case file at ``path``, apply ``overrides`` (``section.key=value``) and
+    :func:`validate` it (for ``tool`` if given)."""
+    path = Path(path)
+    if not path.exists():
+        raise CaseFileError(f"case file {str(path)!r} not found")
+    if not path.is_file():
+        raise CaseFileError(f"case file {str(path)!r} is a folder, not a file")
+    try:
+        data = tomllib.loads(path.read_text(encoding="utf-8"))
+    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
+        raise CaseFileError(f"{path}: not a valid TOML file: {exc}") from None
+    return validate(apply_overrides(data, overrides), tool, source=str(path), folder=path.parent)
+
+
+def check_output(path: str | Path | None, suffixes: tuple, option: str) -> Path | None:
+    """Check, before any work, that an output file can be written at ``path``: a known
+    suffix, not a folder, a writable folder (created if missing).
+
+    Raises
+    ------
+    CaseFileError
+        Naming ``option`` (``--plot``), the path and what is wrong.
+    """
+    if path is None:
+        return None
+    path = Path(path)
+    if path.suffix.lower() not in suffixes:
+        raise CaseFileError(f"{option} {str(path)!r}: the file must end in {' or '.join(suffixes)}")
+    if path.is_dir():
+        raise CaseFileError(f"{option} {str(path)!r} is a folder; give a file name")
+    folder = path.parent
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise CaseFileError(f"{option} {str(path)!r}: cannot create the folder {str(folder)!r} ({exc.strerror})") from None
+    if not os.access(folder, os.W_OK) or (path.exists() and not os.access(path, os.W_OK)):
+        raise CaseFileError(f"{option} {str(path)!r}: not writable")
+    return path

@@ -1,0 +1,242 @@
+"""The one description of a case file: every section and key, its type, unit, default,
+rule and which tool reads it. No physics and no numerics live here; each package turns
+the validated dict into its own problem objects.
+
+Tools: ``bem`` (``bem solve``) and ``fem`` (``fem-reference solve``). A section marked
+``discretization`` belongs to one tool (``[grid]`` to the BEM, ``[fem]`` to the FEM) and
+the other tool ignores it; any other key a tool does not read is an error for that tool,
+never silently dropped.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+__all__ = ["KINDS", "TOOLS", "RULES", "Key", "Variant", "Section", "SCHEMA", "section"]
+
+#: value kinds: a finite number (int or float, never a boolean), an integer, a string,
+#: a non-empty list of numbers, a path to a file (relative to the case file's folder)
+KINDS = ("number", "integer", "string", "numbers", "path")
+#: the tools that read case files, and their command names
+TOOLS = {"bem": "bem solve", "fem": "fem-reference solve"}
+BOTH = ("bem", "fem")
+#: range rules, as the messages and the docs write them
+RULES = {"": "", ">0": "> 0", ">=0": ">= 0"}
+
+
+@dataclass(frozen=True)
+class Key:
+    """One key of a section.
+
+    ``rule`` is ``">0"``, ``">=0"`` or empty (checked on numbers, integers and every
+    element of a list); ``default`` is the value a missing key takes (``None``: no value,
+    the reader decides, as ``default_doc`` says).
+    """
+
+    name: str
+    kind: str
+    unit: str
+    doc: str
+    readers: tuple = BOTH
+    required: bool = False
+    default: object = None
+    default_doc: str = ""
+    rule: str = ""
+    choices: tuple = ()
+
+    def __post_init__(self) -> None:
+        if self.kind not in KINDS:
+            raise ValueError(f"key {self.name}: kind must be one of {KINDS}, got {self.kind!r}")
+        if self.rule not in RULES:
+            raise ValueError(f"key {self.name}: rule must be '', '>0' or '>=0', got {self.rule!r}")
+
+
+@dataclass(frozen=True)
+class Variant:
+    """The keys that one value of a section's selector key brings (a material model, an
+    indenter shape), and the tools that can solve it."""
+
+    name: str
+    doc: str
+    keys: tuple = ()
+    readers: tuple = BOTH
+
+
+@dataclass(frozen=True)
+class Section:
+    """A ``[section]`` of a case file.
+
+    ``selector`` names the key whose value picks one of ``variants`` (its keys join the
+    section's); ``one_of`` lists groups of keys of which exactly one must be given;
+    ``required_by`` the tools that need the section.
+    """
+
+    name: str
+    doc: str
+    keys: tuple = ()
+    readers: tuple = BOTH
+    required_by: tuple = ()
+    discretization: bool = False
+    selector: str | None = None
+    variants: dict = field(default_factory=dict)
+    one_of: tuple = ()
+
+    def key(self, name: str, variant: str | None = None) -> Key | None:
+        """The key ``name`` of the section (with the keys of ``variant``), or ``None``."""
+        keys = self.keys + (self.variants[variant].keys if variant in self.variants else ())
+        return next((k for k in keys if k.name == name), None)
+
+    def all_keys(self, name: str) -> list[Key]:
+        """Every declaration of ``name`` in the section and its variants."""
+        keys = list(self.keys) + [k for v in self.variants.values() for k in v.keys]
+        return [k for k in keys if k.name == name]
+
+
+def _radius(readers=BOTH) -> Key:
+    return Key("radius", "number", "m", "radius R of the indenter", readers, required=True, rule=">0")
+
+
+def _xy(name: str, kind: str, unit: str, doc: str, rule: str = ">0", default_doc: str = "") -> tuple:
+    """A grid quantity given once for both directions or per direction."""
+    return (
+        Key(name, kind, unit, f"{doc}, both directions (or {name}_x and {name}_y)", ("bem",), rule=rule,
+            default_doc=default_doc),
+        Key(f"{name}_x", kind, unit, f"{doc} along x", ("bem",), rule=rule),
+        Key(f"{name}_y", kind, unit, f"{doc} along y", ("bem",), rule=rule),
+    )
+
+
+SCHEMA: tuple = (
+    Section(
+        "layer", "the layer bonded to a rigid base at z = 0, free surface z = H",
+        keys=(
+            Key("thickness", "number", "m", "thickness H", required=True, rule=">0"),
+            Key("density", "number", "kg/m^3", "density rho; 0 neglects inertia", default=0.0, rule=">=0"),
+        ),
+        required_by=BOTH,
+    ),
+    Section(
+        "material", "the incompressible linear viscoelastic solid (SI units, G* at omega in rad/s)",
+        keys=(Key("model", "string", "-", "material model", required=True,
+                  choices=("elastic", "three_parameter", "prony", "table")),),
+        required_by=BOTH,
+        selector="model",
+        variants={
+            "elastic": Variant("elastic", "G*(omega) = G", (
+                Key("shear_modulus", "number", "Pa", "shear modulus G", required=True, rule=">0"),)),
+            "three_parameter": Variant(
+                "three_parameter", "the paper's three-parameter solid, eq. 71", (
+                    Key("G0", "number", "Pa", "static shear modulus G(0)", ("bem",), required=True, rule=">0"),
+                    Key("tau", "number", "s", "creep time", ("bem",), required=True, rule=">0"),
+                    Key("f", "number", "-", "G1/G2; glassy modulus G0 (1 + f)", ("bem",), required=True, rule=">=0"),
+                ), readers=("bem",)),
+            "prony": Variant(
+                "prony", "generalized Maxwell: G*(w) = G_inf + sum_i G_i i w tau_i / (1 + i w tau_i)", (
+                    Key("G_inf", "number", "Pa", "relaxed modulus", ("bem",), required=True, rule=">0"),
+                    Key("G", "numbers", "Pa", "branch moduli G_i", ("bem",), required=True, rule=">0"),
+                    Key("tau", "numbers", "s", "branch relaxation times tau_i", ("bem",), required=True, rule=">0"),
+                ), readers=("bem",)),
+            "table": Variant(
+                "table", "a measured master curve", (
+                    Key("file", "path", "-", "CSV with columns omega (rad/s), G' (Pa), G'' (Pa); "
+                        "header line optional", ("bem",), required=True),
+                ), readers=("bem",)),
+        },
+    ),
+    Section(
+        "indenter", "the rigid indenter",
+        keys=(Key("shape", "string", "-", "indenter shape", default="sphere",
+                  choices=("sphere", "paraboloid", "cylinder", "heightmap")),),
+        required_by=BOTH,
+        selector="shape",
+        variants={
+            "sphere": Variant("sphere", "exact sphere, paper eq. 13", (_radius(),)),
+            "paraboloid": Variant("paraboloid", "s = r^2 / (2 R)", (_radius(),)),
+            "cylinder": Variant("cylinder", "roller with its axis along y", (
+                _radius(("bem",)),
+                Key("length", "number", "m", "the roller's length along y", ("bem",), required=True, rule=">0"),
+            ), readers=("bem",)),
+            "heightmap": Variant("heightmap", "a measured or computed surface", (
+                Key("file", "path", "-", "NPZ with arrays x (m, Kx), y (m, Ky), h (m, Ky x Kx): the gap "
+                    "of the unloaded surface below the lowest point, >= 0", ("bem",), required=True),
+            ), readers=("bem",)),
+        },
+    ),
+    Section(
+        "loading", "steady motion in +x and the normal loading (exactly one of load and indentation)",
+        keys=(
+            Key("speed", "number", "m/s", "speed V of the frame in +x; 0 is stationary contact",
+                default=0.0, rule=">=0"),
+            Key("load", "number", "N", "normal load P (load control)", rule=">0"),
+            Key("indentation", "number", "m", "indentation d (displacement control)", rule=">0"),
+        ),
+        required_by=BOTH,
+        one_of=(("load", "indentation"),),
+    ),
+    Section(
+        "grid", "the BEM discretization (paper sections 7-8); nodes at x = i a, centred on the indenter",
+        keys=(
+            *_xy("spacing", "number", "m", "node spacing a"),
+            *_xy("period", "number", "m", "period L of the Fourier series; need not be a multiple of a"),
+            *_xy("truncation", "integer", "-", "truncation order Nt: modes |m|, |n| <= Nt"),
+            *_xy("half_width", "number", "m", "candidate region |x|, |y| <= half_width",
+                 default_doc="sized from an elastic estimate of the contact radius"),
+        ),
+        readers=("bem",),
+        required_by=("bem",),
+        discretization=True,
+    ),
+    Section(
+        "friction", "Coulomb friction at the contact (absent: frictionless); needs speed > 0",
+        keys=(
+            Key("mu", "number", "-", "coefficient of sliding friction", ("bem",), required=True, rule=">=0"),
+            Key("mode", "string", "-", "loading mode: Q at the top (T = Q R, eq. 4), Q at the axle (T = 0), "
+                "axle torque (Q = 0), or Omega given", ("bem",), default="pushed_at_top",
+                choices=("pushed_at_top", "towed", "torque", "omega")),
+            Key("omega", "number", "rad/s", "rotational speed Omega, mode = \"omega\" only; > 0 forward "
+                "rolling, 0 pure sliding", ("bem",)),
+            Key("radius", "number", "m", "axis to lowest point, for heightmap indenters", ("bem",),
+                rule=">0", default_doc="the indenter's radius"),
+            Key("max_iter", "integer", "-", "active-set iterations allowed", ("bem",), default=300, rule=">0"),
+            Key("direction_tol", "number", "-", "convergence of the slip law", ("bem",), default=1e-7, rule=">0"),
+            Key("set_tol", "number", "-", "accepted stick/slip border violation in a two-state cycle",
+                ("bem",), default=1e-2, rule=">=0"),
+            Key("dense_limit", "integer", "-", "unknowns (3 per contact node) solved by dense LU; above, "
+                "GMRES with FFT products (O(N) memory)", ("bem",), default=1000, rule=">=0"),
+        ),
+        readers=("bem",),
+    ),
+    Section(
+        "fem", "the fem_reference discretization (a_est: the estimated contact radius)",
+        keys=(
+            Key("model", "string", "-", "axisymmetric (r, z) section or 3D quarter cylinder", ("fem",),
+                default="axisymmetric", choices=("axisymmetric", "3d")),
+            Key("element_size", "number", "m", "element size in the contact zone", ("fem",), rule=">0",
+                default_doc="axisymmetric min(a_est/24, H/4), 3d min(a_est/8, H/2)"),
+            Key("contact_zone", "number", "m", "radius of the refined candidate contact zone", ("fem",),
+                rule=">0", default_doc="1.4 a_est"),
+            Key("domain_radius", "number", "m", "lateral extent of the truncated layer", ("fem",), rule=">0",
+                default_doc="contact_zone + 8 H"),
+            Key("far_size", "number", "m", "largest element size", ("fem",), rule=">0",
+                default_doc="H/2 axisymmetric, H in 3d"),
+            Key("grading", "number", "-", "size growth with distance from the zone", ("fem",), default=0.3,
+                rule=">0"),
+            Key("refine", "integer", "-", "uniform refinements of the mesh (nested levels)", ("fem",),
+                default=0, rule=">=0"),
+            Key("solver", "string", "-", "sparse LU, or MINRES with AMG (needs the minres extra: pyamg)",
+                ("fem",), default="direct", choices=("direct", "minres")),
+            Key("rtol", "number", "-", "MINRES relative tolerance", ("fem",), default=1e-8, rule=">0"),
+            Key("fit_nodes", "integer", "-", "surface vertices outside the edge fitted for the radius "
+                "(>= 2)", ("fem",), default=3, rule=">0"),
+            Key("max_iterations", "integer", "-", "active-set iteration limit", ("fem",), default=100,
+                rule=">0"),
+        ),
+        readers=("fem",),
+        discretization=True,
+    ),
+)
+
+
+def section(name: str) -> Section | None:
+    """The section called ``name``, or ``None``."""
+    return next((s for s in SCHEMA if s.name == name), None)
