@@ -7,6 +7,7 @@ answer quietly.
 __all__ = [
     "FemReferenceError",
     "InputError",
+    "MissingDependencyError",
     "MeshError",
     "LinearSolverError",
     "ContactNotConvergedError",
@@ -20,6 +21,12 @@ class FemReferenceError(Exception):
 
 class InputError(FemReferenceError, ValueError):
     """An input value breaks its rule (the message names field, value and rule)."""
+
+
+class MissingDependencyError(InputError):
+    """A setting needs an optional package that is not installed (``fem.solver =
+    "minres"`` needs pyamg); the message says what to install or which setting to use
+    instead. An :class:`InputError`: the command line exits with status 2."""
 
 
 class MeshError(FemReferenceError):

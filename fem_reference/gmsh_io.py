@@ -10,12 +10,14 @@ import os
 import tempfile
 from typing import Callable
 
-import gmsh
 import meshio
 import numpy as np
 from skfem.io.meshio import from_meshio
 
+from ._deps import import_gmsh
 from .errors import MeshError
+
+gmsh = import_gmsh()  # one clear ImportError if gmsh's system libraries are missing
 
 __all__ = ["mesh_with_gmsh"]
 

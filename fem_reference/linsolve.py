@@ -5,7 +5,9 @@ A^T + A, partial pivoting: the zero pressure block needs it). :class:`MinresSolv
 runs MINRES preconditioned by blockdiag(AMG(A_uu), M_p / (2 G)): smoothed
 aggregation (pyamg, rigid-body near-null space) on the displacement block, and the
 pressure mass matrix, spectrally equivalent to the Schur complement
-B A_uu^-1 B^T of an incompressible solid, on the pressure block.
+B A_uu^-1 B^T of an incompressible solid, on the pressure block. pyamg is optional
+(``pip install 'viscolayer[minres]'``); without it :class:`MinresSolver` raises
+:class:`~fem_reference.errors.MissingDependencyError`.
 """
 
 from __future__ import annotations
@@ -17,6 +19,7 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
+from ._deps import import_pyamg
 from .errors import LinearSolverError
 
 __all__ = ["DirectSolver", "MinresSolver"]
@@ -102,6 +105,11 @@ class MinresSolver:
         Near-null space (rigid-body modes) for the aggregation AMG.
     rtol : float
         Relative residual tolerance (-).
+
+    Raises
+    ------
+    MissingDependencyError
+        If pyamg is not installed.
     """
 
     name = "minres"
@@ -109,8 +117,7 @@ class MinresSolver:
     def __init__(self, S, n_u: int, Mp, G: float, scale: np.ndarray,
                  near_null: Optional[np.ndarray] = None, rtol: float = 1e-10,
                  maxiter: int = 5000):
-        import pyamg
-
+        pyamg = import_pyamg()
         t0 = time.perf_counter()
         self.D = 1.0 / np.sqrt(scale)  # same symmetric scaling as DirectSolver
         Dm = sp.diags(self.D)

@@ -10,11 +10,12 @@ from __future__ import annotations
 
 import math
 
-import gmsh
-
+from ._deps import import_gmsh
 from .discretization import Discretization
 from .gmsh_io import mesh_with_gmsh
 from .mesh_axisym import _size_field
+
+gmsh = import_gmsh()  # one clear ImportError if gmsh's system libraries are missing
 
 __all__ = ["quarter_cylinder_mesh"]
 

@@ -8,10 +8,11 @@ h = min(h_c + grading * dist, h_far), with dist (m) the distance to the zone.
 
 from __future__ import annotations
 
-import gmsh
-
+from ._deps import import_gmsh
 from .discretization import Discretization
 from .gmsh_io import mesh_with_gmsh
+
+gmsh = import_gmsh()  # one clear ImportError if gmsh's system libraries are missing
 
 __all__ = ["axisymmetric_mesh"]
 
