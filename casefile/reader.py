@@ -245,7 +245,11 @@ def read(path: str | Path, overrides: Iterable[str] = (), tool: str | None = Non
         data = tomllib.loads(path.read_text(encoding="utf-8"))
     except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
         raise CaseFileError(f"{path}: not a valid TOML file: {exc}") from None
-    return validate(apply_overrides(data, overrides), tool, source=str(path), folder=path.parent)
+    try:
+        data = apply_overrides(data, overrides)
+    except CaseFileError as exc:
+        raise CaseFileError(f"{path}: {exc}") from None
+    return validate(data, tool, source=str(path), folder=path.parent)
 
 
 def check_output(path: str | Path | None, suffixes: tuple, option: str) -> Path | None:
@@ -265,6 +269,9 @@ def check_output(path: str | Path | None, suffixes: tuple, option: str) -> Path 
     if path.is_dir():
         raise CaseFileError(f"{option} {str(path)!r} is a folder; give a file name")
     folder = path.parent
+    blocking = next((a for a in (folder, *folder.parents) if a.exists() and not a.is_dir()), None)
+    if blocking is not None:
+        raise CaseFileError(f"{option} {str(path)!r}: {str(blocking)!r} is a file, not a folder")
     try:
         folder.mkdir(parents=True, exist_ok=True)
     except OSError as exc:

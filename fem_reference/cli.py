@@ -3,7 +3,9 @@
 Progress (a line per stage and per active-set iteration) goes to stderr; the
 result goes to stdout, as one JSON object with ``--json`` (``contact_radius``
 m, ``indentation`` m, ``load`` N, ``peak_pressure`` Pa, ``mesh`` and
-``solver``). Exit status 0 on success, 2 for bad input, 1 when the solve fails.
+``solver``), before any file is written. Output paths are checked before the
+solve. Exit status 0 on success, 2 for bad input, 1 when the solve fails or an
+output could not be written.
 """
 
 from __future__ import annotations
@@ -12,6 +14,8 @@ import argparse
 import json
 import sys
 from typing import List, Optional
+
+import casefile
 
 from .case import load_case
 from .errors import FemReferenceError, InputError
@@ -42,7 +46,13 @@ def main(argv: Optional[List[str]] = None) -> int:
         print(f"fem-reference: {line}", file=sys.stderr, flush=True)
 
     try:
+        plot = casefile.check_output(args.plot, (".png", ".pdf", ".svg"), "--plot")
+        vtu = casefile.check_output(args.vtu, (".vtu",), "--vtu")
         problem = load_case(args.case, args.set)
+    except (InputError, casefile.CaseFileError) as exc:
+        print(f"fem-reference: error: {exc}", file=sys.stderr)
+        return 2
+    try:
         result = solve(problem, progress=None if args.quiet else progress)
     except InputError as exc:
         print(f"fem-reference: error: {exc}", file=sys.stderr)
@@ -50,20 +60,27 @@ def main(argv: Optional[List[str]] = None) -> int:
     except FemReferenceError as exc:
         print(f"fem-reference: error: {type(exc).__name__}: {exc}", file=sys.stderr)
         return 1
-    if args.plot:
-        plot_result(result, args.plot)
-    if args.vtu:
-        write_vtu(result, args.vtu)
     summary = result.summary()
     if args.json:
-        print(json.dumps(summary, indent=2))
+        print(json.dumps(summary, indent=2, allow_nan=False))
     else:
         print(f"contact radius {result.contact_radius:.6e} m\nindentation    "
               f"{result.indentation:.6e} m\nload           {result.load:.6e} N\n"
               f"peak pressure  {result.peak_pressure:.6e} Pa\n"
               f"{result.mesh.model}: {result.mesh.unknowns} unknowns, "
               f"{result.solver.contact_iterations} active-set iterations")
-    return 0
+    sys.stdout.flush()
+    failed = 0
+    for option, path, write in (("--plot", plot, plot_result), ("--vtu", vtu, write_vtu)):
+        if path is None:
+            continue
+        try:
+            write(result, path)
+        except (OSError, ValueError) as exc:
+            print(f"fem-reference: error: the result above was computed, but {option} {path} was not "
+                  f"written: {exc}", file=sys.stderr)
+            failed += 1
+    return 1 if failed else 0
 
 
 if __name__ == "__main__":
