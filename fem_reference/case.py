@@ -37,8 +37,8 @@ def problem_from_dict(data: Dict[str, Any]) -> ContactProblem:
         raise InputError(str(exc)) from None
     speed = data["loading"].get("speed", 0.0)
     if speed != 0:
-        raise InputError(f"[loading] speed must be 0 m/s for fem-reference (the FEM reference "
-                         f"is stationary), got {speed!r}")
+        raise InputError(f"[loading] speed must be 0 m/s: fem-reference solves stationary contact "
+                         f"only (bem solve rolls), got {speed!r}")
     loading = data["loading"]
     return ContactProblem(
         layer=Layer(thickness=data["layer"]["thickness"]),

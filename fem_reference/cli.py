@@ -68,7 +68,7 @@ def main(argv: Optional[List[str]] = None) -> int:
               f"{result.indentation:.6e} m\nload           {result.load:.6e} N\n"
               f"peak pressure  {result.peak_pressure:.6e} Pa\n"
               f"{result.mesh.model}: {result.mesh.unknowns} unknowns, "
-              f"{result.solver.contact_iterations} active-set iterations")
+              f"{result.solver.iterations} active-set iterations")
     sys.stdout.flush()
     failed = 0
     for option, path, write in (("--plot", plot, plot_result), ("--vtu", vtu, write_vtu)):

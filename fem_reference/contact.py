@@ -54,6 +54,8 @@ class ContactSolution:
         Nodes in contact.
     iterations : int
         Active-set iterations (both methods together).
+    history : tuple of int
+        Nodes in the active set at each primal-dual iteration.
     method : str
         "primal-dual" or "primal-dual, then primal (cycle)".
     residual : float
@@ -68,6 +70,7 @@ class ContactSolution:
     iterations: int
     method: str
     residual: float
+    history: tuple = ()
 
 
 def _solve_on(W, m, q, work, load, indentation):
@@ -175,8 +178,10 @@ def solve_contact(W: np.ndarray, m: np.ndarray, q: np.ndarray, *,
     seen = set()
     method = "primal-dual"
     it = 0
+    history = []
     while True:
         it += 1
+        history.append(int(active.sum()))
         lam, d = _solve_on(W, m, q, active, load, indentation)
         g = _gap(W, m, q, lam, d)
         new = (lam - c * g) > 0
@@ -206,4 +211,5 @@ def solve_contact(W: np.ndarray, m: np.ndarray, q: np.ndarray, *,
     scale = max(lam.max(), 1e-300)
     residual = float(np.max(np.abs(np.minimum(lam, c * g))) / scale)
     return ContactSolution(pressure=lam, gap=g, indentation=float(d), load=float(m @ lam),
-                           active=lam > 0, iterations=it, method=method, residual=residual)
+                           active=lam > 0, iterations=it, method=method, residual=residual,
+                           history=tuple(history))

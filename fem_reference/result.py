@@ -29,19 +29,24 @@ class MeshStats:
 
 @dataclass(frozen=True)
 class SolverRecord:
-    """How the solve went.
+    """How the solve went, in the vocabulary of every solver of the project.
 
-    ``contact_residual`` is the complementarity residual of the contact problem
-    (-), ``linear_residual`` the largest relative residual of the saddle solves (-),
-    ``times`` the wall-clock seconds of each stage.
+    ``iterations`` of the contact active set (both methods together), ``residual`` its
+    complementarity residual (-), ``history`` the active nodes at each primal-dual
+    iteration, ``method`` the contact method that ended the solve; ``linear_solver``,
+    ``linear_iterations`` (Krylov, summed; 0 for the direct solver) and
+    ``linear_residual`` (the largest relative residual of the saddle solves, -) for the
+    linear systems; ``factor_nonzeros`` of the LU factors; ``times`` the wall-clock
+    seconds of each stage.
     """
 
+    iterations: int
+    residual: float
+    history: tuple
+    method: str
     linear_solver: str
-    contact_method: str
-    contact_iterations: int
-    contact_residual: float
+    linear_iterations: int
     linear_residual: float
-    krylov_iterations: int
     factor_nonzeros: int
     times: Dict[str, float]
 

@@ -143,11 +143,10 @@ def solve(problem: ContactProblem,
                       contact_nodes=int(len(system.m)), element_size=h,
                       contact_zone=disc.contact_zone, domain_radius=disc.domain_radius,
                       far_size=disc.far_size)
-    record = SolverRecord(linear_solver=solver.name, contact_method=sol.method,
-                          contact_iterations=sol.iterations, contact_residual=sol.residual,
-                          linear_residual=solver.max_residual,
-                          krylov_iterations=solver.iterations, factor_nonzeros=int(solver.fill),
-                          times=times)
+    record = SolverRecord(iterations=sol.iterations, residual=sol.residual, history=sol.history,
+                          method=sol.method, linear_solver=solver.name,
+                          linear_iterations=solver.iterations, linear_residual=solver.max_residual,
+                          factor_nonzeros=int(solver.fill), times=times)
     say(f"done: contact radius {radius:.5e} m, indentation {sol.indentation:.5e} m, "
         f"peak pressure {sol.pressure.max():.5e} Pa ({times['total']:.1f} s)")
     return ContactResult(load=k * sol.load, indentation=sol.indentation, contact_radius=radius,
