@@ -57,4 +57,4 @@ def test_cli_json_plot_vtu(tmp_path, capsys):
     assert "contact iteration" in out.err
     assert png.stat().st_size > 0 and vtu.stat().st_size > 0
     assert main(["solve", str(case), "--set", "loading.speed=0.1"]) == 2
-    assert "stationary only" in capsys.readouterr().err
+    assert "speed must be 0 m/s: fem-reference solves stationary contact only" in capsys.readouterr().err
