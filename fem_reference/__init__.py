@@ -48,7 +48,7 @@ a_est (m) is the smaller of the Hertz radius and the thin-layer asymptote
 """
 
 from .errors import (ContactNotConvergedError, ContactZoneError, FemReferenceError,
-                     InputError, LinearSolverError, MeshError)
+                     InputError, LinearSolverError, MeshError, MissingDependencyError)
 from .problem import ContactProblem, ElasticMaterial, FemSettings, Indenter, Layer, Loading
 from .result import ContactResult
 from .solve import solve
@@ -56,5 +56,5 @@ from .solve import solve
 __all__ = [
     "solve", "ContactProblem", "Layer", "ElasticMaterial", "Indenter", "Loading",
     "FemSettings", "ContactResult", "FemReferenceError", "InputError", "MeshError",
-    "LinearSolverError", "ContactNotConvergedError", "ContactZoneError",
+    "LinearSolverError", "ContactNotConvergedError", "ContactZoneError", "MissingDependencyError",
 ]

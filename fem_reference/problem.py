@@ -167,6 +167,10 @@ class FemSettings:
             raise InputError(f"fem.model must be one of {self.MODELS}, got {self.model!r}")
         if self.solver not in self.SOLVERS:
             raise InputError(f"fem.solver must be one of {self.SOLVERS}, got {self.solver!r}")
+        if self.solver == "minres":  # fail at the input, not after meshing and assembly
+            from ._deps import import_pyamg
+
+            import_pyamg()
         for name in ("element_size", "contact_zone", "domain_radius", "far_size"):
             _optional_positive(f"fem.{name}", getattr(self, name), "m")
         _positive("fem.grading", self.grading, "(-)")

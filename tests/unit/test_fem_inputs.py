@@ -109,3 +109,15 @@ def test_sphere_profile_is_exact_and_paraboloid_its_limit():
     assert np.allclose(Indenter("sphere", R).profile(r), R - np.sqrt(R * R - r * r),
                        rtol=1e-12, atol=1e-18)
     assert np.allclose(Indenter("paraboloid", R).profile(r), r * r / (2 * R))
+
+
+def test_minres_without_pyamg_fails_at_the_input(monkeypatch):
+    """The missing optional dependency is found when the settings are made, before any mesh."""
+    import sys
+
+    from fem_reference import MissingDependencyError
+
+    monkeypatch.setitem(sys.modules, "pyamg", None)  # import pyamg raises ImportError
+    with pytest.raises(MissingDependencyError, match="pip install 'viscolayer\\[minres\\]'"):
+        FemSettings(solver="minres")
+    assert FemSettings(solver="direct").solver == "direct"
