@@ -20,7 +20,7 @@ Python use::
 
 Command line: ``fem-reference solve CASE.toml --json [--set fem.model='"3d"']
 [--plot FILE.png] [--vtu FILE.vtu]``. The case file is the one of ``bem solve``
-(README, "Case files"); fem_reference reads ``[layer] thickness``,
+(docs/case-files.md); fem_reference reads ``[layer] thickness``,
 ``[material] model = "elastic"`` with ``shear_modulus``, ``[indenter] shape``
 ("sphere" | "paraboloid") and ``radius``, ``[loading] load`` or
 ``indentation`` (``speed`` must be 0), and its own ``[fem]`` section:

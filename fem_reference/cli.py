@@ -27,7 +27,7 @@ def _parser() -> argparse.ArgumentParser:
     ap = argparse.ArgumentParser(prog="fem-reference", description=__doc__.splitlines()[0])
     sub = ap.add_subparsers(dest="command", required=True)
     s = sub.add_parser("solve", help="solve a case file (elastic, stationary, frictionless)")
-    s.add_argument("case", help="TOML case file (README, 'Case files')")
+    s.add_argument("case", help="TOML case file (docs/case-files.md)")
     s.add_argument("--json", action="store_true", help="print the result as one JSON object")
     s.add_argument("--set", action="append", default=[], metavar="SECTION.KEY=VALUE",
                    help="override an entry; the value is parsed as TOML")
