@@ -8,7 +8,11 @@ gap ``h = s - d + u`` satisfies ``h >= 0``, ``F >= 0``, ``F h = 0`` node by node
 Solver: the primal-dual active-set method (Hintermueller, Ito and Kunisch 2002), i.e.
 Kalker's active-set contact algorithm: on a trial contact set ``A`` solve the linear
 problem ``C_AA F_A - d 1 = -s_A`` (with ``1^T F_A = P``), then drop nodes in tension and
-add penetrating ones, until the set repeats. It needs no symmetry of ``C`` (steady
+add penetrating ones, until the set repeats. The first set is the contact of the same
+problem on every other node (recursively), or on small grids every reachable node under
+load control and the geometric overlap ``{s < d}`` under displacement control (with
+``d`` prescribed, all reachable nodes would ask for upward displacements of up to the
+profile's height, i.e. tension, on most of them). It needs no symmetry of ``C`` (steady
 rolling makes it non-symmetric) and ends with the exact complementarity solution of the
 discrete problem. Linear solves are dense LU on small sets and restarted GMRES with the
 FFT operator otherwise, preconditioned by the exact inverse of the operator's circulant
@@ -213,6 +217,8 @@ def _coarse_start(operator, s, reachable, load, indentation, dense_limit, rtol):
         return None
     sub = ComplianceOperator(coarse, operator.kernel[::2, ::2])
     prof = np.where(reachable, s, np.inf).reshape(Ky, Kx)[::2, ::2]
+    if indentation is not None and not (prof < indentation).any():
+        return None  # the indentation reaches no coarse node
     try:
         res = solve_normal(sub, prof, load=load, indentation=indentation, dense_limit=dense_limit, rtol=rtol)
     except ContactError:
@@ -257,7 +263,9 @@ def solve_normal(
 
     Raises
     ------
-    ContactNotConverged, ContactAtEdge, ValueError
+    ContactNotConverged, ContactAtEdge
+    ValueError
+        Bad arguments, or (displacement control) an indentation that reaches no node.
     """
     if (load is None) == (indentation is None):
         raise ValueError("give exactly one of load (N) and indentation (m)")
@@ -273,9 +281,19 @@ def solve_normal(
     if not reachable.any():
         raise ValueError("the indenter reaches no node of the grid")
 
+    if load is None:
+        first = reachable & (s < indentation)  # the geometric overlap of the undeformed surface
+        if not first.any():
+            raise ValueError(
+                f"indentation = {indentation:g} m reaches no node: the indenter's lowest node is "
+                f"{s[reachable].min():g} m above its lowest point; increase loading.indentation "
+                "or refine the grid"
+            )
+    else:
+        first = reachable
     solve = _LinearSolver(operator, dense_limit, rtol)
     start = _coarse_start(operator, s, reachable, load, indentation, dense_limit, rtol)
-    active = reachable.copy() if start is None or not start.any() else start
+    active = first.copy() if start is None or not start.any() else start
     seen: set[bytes] = set()
     careful = False
     history = []
@@ -303,6 +321,10 @@ def solve_normal(
                 new[np.argmin(np.where(add, h, np.inf))] = True
         else:
             new = (active & ~drop) | add
+        if not new.any() and load is None:
+            # every force came out tensile (only possible with d prescribed): restart from the
+            # deepest node, which alone carries (d - s) / C_ii > 0 (s < d there, checked above)
+            new[np.argmin(np.where(reachable, s, np.inf))] = True
         key = np.packbits(new).tobytes()
         if key in seen:
             if careful:
