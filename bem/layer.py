@@ -72,6 +72,23 @@ class Layer:
         if not callable(getattr(self.material, "modulus", None)):
             raise TypeError(f"material must have a modulus(omega) method, got {self.material!r}")
 
+    @property
+    def relaxed_modulus(self) -> float:
+        """``G(0)`` (Pa), the material's static shear modulus."""
+        return float(np.real(self.material.modulus(0.0)))
+
+    @property
+    def shear_wave_speed(self) -> float:
+        """Slowest shear-wave speed ``c_s = sqrt(G(0) / rho)`` (m/s); ``inf`` without inertia.
+
+        ``G(0)`` because long waves are felt at low frequency, where a passive material is
+        at its softest (relaxed) modulus. Steady motion of the unbounded layer is subsonic
+        only below ``c_s``.
+        """
+        if self.density == 0:
+            return math.inf
+        return math.sqrt(self.relaxed_modulus / self.density)
+
 
 def system_matrix(nu_x, nu_y, G, rho_V2):
     """The 6x6 matrix ``A`` of eq. 45 (with ``beta_y`` corrected, see module docstring).

@@ -44,6 +44,21 @@ def _omega(omega) -> np.ndarray:
     return np.asarray(omega, dtype=float)
 
 
+def _reduced(wt) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Split ``omega tau`` (-) for overflow-free rational functions of it.
+
+    Returns ``(small, x, r)``: ``small = |wt| <= 1``, ``x = wt`` there (0 elsewhere) and
+    ``r = 1 / wt`` elsewhere (0 there). A rational function written in ``x`` on the small
+    side and in ``r`` on the other never forms ``wt**2``, so it stays finite for every
+    ``wt``, infinite included (``r = 0``: the glassy limit).
+    """
+    wt = np.asarray(wt, dtype=float)
+    small = np.abs(wt) <= 1.0
+    x = np.where(small, wt, 0.0)
+    r = 1.0 / np.where(small, 1.0, wt)
+    return small, x, np.where(small, 0.0, r)
+
+
 @dataclass(frozen=True)
 class Elastic:
     """A purely elastic solid, ``G*(omega) = shear_modulus`` at every frequency.
@@ -81,7 +96,8 @@ class ThreeParameterSolid:
     ``G'(w) = G0 (1+f) ((1+f) + w^2 tau^2) / ((1+f)^2 + w^2 tau^2)`` and
     ``G''(w) = G0 (1+f) f w tau / ((1+f)^2 + w^2 tau^2)``. It equals the one-term
     :class:`Prony` series ``G_inf = G0``, ``G_1 = G0 f``, ``tau_1 = tau / (1 + f)``.
-    Valid for ``|omega tau| < 1e150`` (the squares are formed as printed).
+    For ``|omega tau| > 1`` the fractions are evaluated in ``1 / (omega tau)``, so the
+    modulus is finite at every frequency (``G0 (1 + f)`` as ``|omega| -> inf``).
 
     Parameters
     ----------
@@ -104,10 +120,13 @@ class ThreeParameterSolid:
 
     def modulus(self, omega) -> np.ndarray:
         """``G*(omega)`` (Pa, complex, shape of ``omega``) at angular frequencies ``omega`` (rad/s)."""
-        w = _omega(omega)
-        g, f, wt = self.G0 * (1 + self.f), self.f, w * self.tau
-        d = (1 + f) ** 2 + wt**2
-        return g * ((1 + f) + wt**2) / d + 1j * (g * f * wt / d)
+        with np.errstate(over="ignore"):  # omega tau = inf is the glassy limit, r = 0
+            small, x, r = _reduced(_omega(omega) * self.tau)
+        g, f, c = self.G0 * (1 + self.f), self.f, 1 + self.f
+        # (c + x^2) / (c^2 + x^2) = (c r^2 + 1) / (c^2 r^2 + 1), f x / (c^2 + x^2) = f r / (c^2 r^2 + 1)
+        storage = np.where(small, (c + x * x) / (c * c + x * x), (c * r * r + 1) / (c * c * r * r + 1))
+        loss = np.where(small, f * x / (c * c + x * x), f * r / (c * c * r * r + 1))
+        return g * storage + 1j * (g * loss)
 
     @property
     def relaxation_time(self) -> float:
@@ -135,6 +154,9 @@ def _sequence(name: str, value, unit: str) -> tuple[float, ...]:
 class Prony:
     """Generalized Maxwell solid: ``G*(w) = G_inf + sum_i G_i (i w tau_i) / (1 + i w tau_i)``.
 
+    Each branch is evaluated in ``1 / (w tau_i)`` where ``|w tau_i| > 1``, so the modulus
+    is finite at every frequency (``G_inf + sum G_i`` as ``|w| -> inf``).
+
     Parameters
     ----------
     G_inf : float
@@ -158,9 +180,14 @@ class Prony:
 
     def modulus(self, omega) -> np.ndarray:
         """``G*(omega)`` (Pa, complex, shape of ``omega``) at angular frequencies ``omega`` (rad/s)."""
-        w = _omega(omega)
-        iwt = 1j * w[..., None] * np.asarray(self.tau)
-        return self.G_inf + np.sum(np.asarray(self.G) * iwt / (1 + iwt), axis=-1)
+        with np.errstate(over="ignore"):  # omega tau = inf is the glassy limit, r = 0
+            small, x, r = _reduced(_omega(omega)[..., None] * np.asarray(self.tau))
+        # i x / (1 + i x) = (x^2 + i x) / (1 + x^2) = (1 + i r) / (1 + r^2)
+        d = np.where(small, 1 + x * x, 1 + r * r)
+        storage = np.where(small, x * x, 1.0) / d
+        loss = np.where(small, x, r) / d
+        G = np.asarray(self.G)
+        return self.G_inf + np.sum(G * storage, axis=-1) + 1j * np.sum(G * loss, axis=-1)
 
     @property
     def relaxed_modulus(self) -> float:
@@ -295,8 +322,8 @@ class MasterCurveTable:
         at_node = nodes[k] == c
         storage = np.where(at_node, gs[k], storage)
         loss = np.where(at_node, gl[k], loss)
-        loss = np.where(a < lo, gl[0] * a / lo, loss)
-        loss = np.where(a > hi, gl[-1] * hi / np.maximum(a, hi), loss)
+        loss = np.where(a < lo, gl[0] * (np.minimum(a, lo) / lo), loss)
+        loss = np.where(a > hi, gl[-1] * (hi / np.maximum(a, hi)), loss)  # 0 at |omega| = inf
         return storage + 1j * np.where(_omega(omega) < 0, -loss, loss)
 
     @property

@@ -13,7 +13,7 @@ from .layer import Layer
 from .operator import ComplianceOperator
 from .spectral import influence_kernels
 
-__all__ = ["Loading", "Problem", "compute_kernels", "solve_frictionless", "auto_half_width"]
+__all__ = ["Loading", "Problem", "check_subsonic", "compute_kernels", "solve_frictionless", "auto_half_width"]
 
 
 @dataclass(frozen=True)
@@ -45,14 +45,42 @@ class Loading:
                 raise ValueError(f"{name} must be > 0 {unit}, got {v!r}")
 
 
+def check_subsonic(layer: Layer, speed: float) -> None:
+    """Raise ``ValueError`` unless ``speed`` (m/s) is below the layer's shear-wave speed.
+
+    With inertia (``layer.density > 0``) steady motion of the unbounded layer is subsonic
+    only below the slowest shear-wave speed ``c_s = sqrt(G(0) / rho)``
+    (:attr:`bem.layer.Layer.shear_wave_speed`); at or above it the steady state radiates
+    waves, which the periodic model would only imitate with results that depend on the
+    period. Without inertia (``density = 0``) there is no such limit.
+    """
+    c_s = layer.shear_wave_speed
+    if speed >= c_s:
+        raise ValueError(
+            f"loading.speed = {speed:g} m/s is at or above the layer's shear-wave speed "
+            f"c_s = sqrt(G(0) / rho) = sqrt({layer.relaxed_modulus:g} Pa / {layer.density:g} kg/m^3) "
+            f"= {c_s:.3g} m/s: steady motion is subsonic only for speed < c_s (faster, the steady "
+            "state radiates waves that the periodic model would only imitate, with results that "
+            f"depend on the period); use a loading.speed below {c_s:.3g} m/s, or layer.density = 0 "
+            "to neglect inertia"
+        )
+
+
 @dataclass(frozen=True)
 class Problem:
-    """Rigid ``indenter`` on ``layer`` under ``loading``, discretized by ``grid``."""
+    """Rigid ``indenter`` on ``layer`` under ``loading``, discretized by ``grid``.
+
+    Raises ``ValueError`` when the speed is at or above the layer's shear-wave speed
+    (see :func:`check_subsonic`).
+    """
 
     layer: Layer
     indenter: object
     grid: Grid
     loading: Loading
+
+    def __post_init__(self) -> None:
+        check_subsonic(self.layer, self.loading.speed)
 
 
 def auto_half_width(layer: Layer, indenter, loading: Loading, spacing: float) -> float:
@@ -78,8 +106,12 @@ def auto_half_width(layer: Layer, indenter, loading: Loading, spacing: float) ->
 
 def compute_kernels(problem: Problem, blocks, progress: Callable[[str], None] | None = None) -> tuple[dict, float]:
     """Kernel tables of ``blocks`` for the problem's grid, layer and speed, with one
-    progress line; returns them and the seconds they took."""
+    progress line; returns them and the seconds they took.
+
+    Raises ``ValueError`` at or above the shear-wave speed (:func:`check_subsonic`) and
+    when a kernel is not finite (:func:`bem.spectral.influence_kernels`)."""
     p = problem
+    check_subsonic(p.layer, p.loading.speed)
     t0 = time.perf_counter()
     kernels = influence_kernels(p.grid, p.layer, p.loading.speed, blocks=blocks)
     seconds = time.perf_counter() - t0

@@ -154,8 +154,8 @@ def _constraint(mode: str, arm, ell, R):
 class _SetSystem:
     """The linear system of one active-set state, dense or matrix-free.
 
-    Unknowns ``x = (N_C, Sx_C, Sy_C, d, Omega)`` (``d`` under load control, ``Omega`` when
-    free). Rows, all in metres: the gap on ``C``; on stick nodes ``a_x w_x / V`` and
+    Unknowns ``x = (N_C, Sx_C, Sy_C, d, Omega / om_unit)`` (``d`` under load control,
+    ``Omega`` when free, in units of ``om_unit = V / mean(l)`` rad/s). Rows, all in metres: the gap on ``C``; on stick nodes ``a_x w_x / V`` and
     ``a_x w_y / V`` (the upwind differences ``u_{i+1} - u_i`` plus the rigid creep); on
     slip nodes the Newton linearisation of eqs. 17-18 about the current force direction
     ``e``: ``e . S = mu N`` (times the diagonal compliance) and
@@ -177,13 +177,18 @@ class _SetSystem:
         self.A, self.B = np.flatnonzero(st), np.flatnonzero(~st)
         self.ex, self.ey = e[C[self.B], 0], e[C[self.B], 1]
         self.kk = k[C[self.B]] * ax / V
-        self.ox = -ax * ell[C] / V  # Omega's coefficient in a_x w_x / V
+        # a free Omega is solved for in units of om_unit = V / mean(l) (the free-rolling
+        # value), so that the unknowns are O(1) at any speed (unscaled, Omega ~ V / R made
+        # GMRES fail from about 1e50 m/s on)
+        mean_l = float(np.abs(ell[C]).mean())
+        self.om_unit = V / mean_l
+        self.ox = -ax * ell[C] / mean_l  # the scaled Omega's coefficient in a_x w_x / V
         if self.free_om:
             cN, cx = cons
             scale = self.diag / max(np.abs(cx).max(), 1e-300)
             self.cN, self.cx = cN[C] * scale, cx[C] * scale
             # the preconditioner's Omega step: the inverse of its stick-row coefficient
-            self.om_step = V / (ax * float(np.abs(ell[C]).mean()))
+            self.om_step = 1.0 / ax
         # right-hand side: the rows' constant parts, moved over
         bx = -ax * np.ones(nC) + (0.0 if self.free_om else ax * omega * ell[C] / V)
         b = np.zeros(self.n)
@@ -233,13 +238,13 @@ class _SetSystem:
         N, Sx, Sy = np.zeros(size), np.zeros(size), np.zeros(size)
         N[C], Sx[C], Sy[C] = x[:nC], x[nC:2 * nC], x[2 * nC:3 * nC]
         d = x[self.iD] if self.free_d else self.indentation
-        om = x[self.iO] if self.free_om else self.omega
+        om = x[self.iO] * self.om_unit if self.free_om else self.omega
         return N, Sx, Sy, float(d), float(om)
 
     def unknowns(self, N, Sx, Sy, d, om):
         """The inverse of :meth:`full` (a starting guess from full-grid fields)."""
         C = self.C
-        glob = ([d] if self.free_d else []) + ([om] if self.free_om else [])
+        glob = ([d] if self.free_d else []) + ([om / self.om_unit] if self.free_om else [])
         return np.concatenate([N[C], Sx[C], Sy[C], glob])
 
     def matvec(self, x):

@@ -47,6 +47,11 @@ def _check_blocks(blocks) -> tuple[str, ...]:
     return blocks
 
 
+def _rho_V2(layer: Layer, speed: float) -> float:
+    """``rho V^2`` (Pa); exactly 0 without inertia, even where ``V^2`` overflows."""
+    return layer.density * speed**2 if layer.density > 0 else 0.0
+
+
 def mode_symbols(grid: Grid, layer: Layer, speed: float, blocks=("ww",)) -> dict:
     """Fourier weights ``g_PQ(m, n)`` for ``0 <= m <= N_tx``, ``0 <= n <= N_ty``.
 
@@ -59,10 +64,11 @@ def mode_symbols(grid: Grid, layer: Layer, speed: float, blocks=("ww",)) -> dict
     n = np.arange(g.truncation_y + 1)
     nu_x = 2 * np.pi * m / g.period_x
     nu_y = 2 * np.pi * n / g.period_y
-    G = np.asarray(layer.material.modulus(-nu_x * speed), dtype=complex)
+    with np.errstate(over="ignore"):  # |omega| = inf is the glassy limit, finite in every material
+        G = np.asarray(layer.material.modulus(-nu_x * speed), dtype=complex)
     weight = np.outer(np.sinc(m * g.spacing_x / g.period_x), np.sinc(n * g.spacing_y / g.period_y))
     weight /= g.period_x * g.period_y
-    rho_V2 = layer.density * speed**2
+    rho_V2 = _rho_V2(layer, speed)
     out = {b: np.empty((m.size, n.size), dtype=complex) for b in blocks}
 
     def work(start: int) -> None:
@@ -175,10 +181,28 @@ def influence_kernels(grid: Grid, layer: Layer, speed: float, blocks=("ww",)) ->
     Returns
     -------
     dict of str -> ndarray, shape ``(2 K_y - 1, 2 K_x - 1)``, float (m/N)
+
+    Raises
+    ------
+    ValueError
+        If ``speed`` is negative or not finite, or a kernel is not finite (naming the
+        speed and the grid): a solve never proceeds on NaN compliances.
     """
-    if not speed >= 0:
-        raise ValueError(f"speed must be >= 0 m/s, got {speed!r}")
-    return kernels_from_symbols(grid, mode_symbols(grid, layer, speed, blocks))
+    if not (np.isfinite(speed) and speed >= 0):
+        raise ValueError(f"speed must be finite and >= 0 m/s, got {speed!r}")
+    out = kernels_from_symbols(grid, mode_symbols(grid, layer, speed, blocks))
+    bad = [b for b, k in out.items() if not np.isfinite(k).all()]
+    if bad:
+        g = grid
+        raise ValueError(
+            f"the influence kernels {', '.join(bad)} are not finite at speed = {speed:g} m/s on the grid "
+            f"of {g.nodes_x} x {g.nodes_y} nodes (a = {g.spacing_x:g} x {g.spacing_y:g} m, "
+            f"L = {g.period_x:g} x {g.period_y:g} m, N_t = {g.truncation_x} x {g.truncation_y}): "
+            "the material's modulus or the layer's compliance is not finite at some of the modes' "
+            f"frequencies |omega_m| = 2 pi m V / L_x <= {2 * np.pi * g.truncation_x * speed / g.period_x:.3g} "
+            "rad/s; use a lower loading.speed or check the material model"
+        )
+    return out
 
 
 def influence_kernels_direct(grid: Grid, layer: Layer, speed: float, blocks=("ww",)) -> dict:
@@ -193,8 +217,9 @@ def influence_kernels_direct(grid: Grid, layer: Layer, speed: float, blocks=("ww
     m = np.arange(-g.truncation_x, g.truncation_x + 1)
     n = np.arange(-g.truncation_y, g.truncation_y + 1)
     nu_x, nu_y = 2 * np.pi * m / g.period_x, 2 * np.pi * n / g.period_y
-    G = np.asarray(layer.material.modulus(-nu_x * speed), dtype=complex)
-    C = surface_compliance(nu_x[:, None], nu_y[None, :], G[:, None], layer.density * speed**2, layer.thickness)
+    with np.errstate(over="ignore"):
+        G = np.asarray(layer.material.modulus(-nu_x * speed), dtype=complex)
+    C = surface_compliance(nu_x[:, None], nu_y[None, :], G[:, None], _rho_V2(layer, speed), layer.thickness)
     # eqs. 56-59: Fourier coefficients of a unit force on a patch, without its phase
     with np.errstate(invalid="ignore", divide="ignore"):
         fx = np.where(m == 0, g.spacing_x / g.period_x, np.sin(np.pi * m * g.spacing_x / g.period_x) / (np.pi * m))
