@@ -60,6 +60,7 @@ def viscous_dissipation(grid: Grid, layer: Layer, speed: float, force_z: np.ndar
     nu_x = 2 * np.pi * m / g.period_x
     nu_y = 2 * np.pi * n / g.period_y
     G = np.asarray(layer.material.modulus(-nu_x * speed), dtype=complex)
+    rho_V2 = layer.inertia(speed)
     wx = np.sinc(m * g.spacing_x / g.period_x) / g.period_x
     wy = np.sinc(n * g.spacing_y / g.period_y) / g.period_y
     e_pos = np.exp(-1j * np.outer(g.y, nu_y)) * wy  # (K_y, n), n >= 0
@@ -72,8 +73,7 @@ def viscous_dissipation(grid: Grid, layer: Layer, speed: float, force_z: np.ndar
         rows = [ex @ f.T for f in F]
         t = np.stack([r @ e_pos for r in rows], axis=-1)  # (m, n >= 0, 3)
         tn = np.stack([r @ e_neg for r in rows], axis=-1) * flip  # D t at (m, -n), n >= 1
-        C = surface_compliance(nu_x[sl, None], nu_y[None, :], G[sl, None],
-                               layer.density * speed**2, layer.thickness)
+        C = surface_compliance(nu_x[sl, None], nu_y[None, :], G[sl, None], rho_V2, layer.thickness)
         quad = np.einsum("mni,mnij,mnj->mn", t.conj(), C, t)
         quad_n = np.einsum("mni,mnij,mnj->mn", tn.conj(), C[:, 1:], tn)
         total += float((nu_x[sl, None] * quad.imag).sum() + (nu_x[sl, None] * quad_n.imag).sum())

@@ -89,6 +89,11 @@ class Layer:
             return math.inf
         return math.sqrt(self.relaxed_modulus / self.density)
 
+    def inertia(self, speed: float) -> float:
+        """``rho V^2`` (Pa) of the steady moving-frame inertia at ``speed`` (m/s); exactly 0
+        without inertia, whatever the speed (no ``0 * inf``)."""
+        return self.density * speed**2 if self.density > 0 else 0.0
+
 
 def system_matrix(nu_x, nu_y, G, rho_V2):
     """The 6x6 matrix ``A`` of eq. 45 (with ``beta_y`` corrected, see module docstring).

@@ -47,11 +47,6 @@ def _check_blocks(blocks) -> tuple[str, ...]:
     return blocks
 
 
-def _rho_V2(layer: Layer, speed: float) -> float:
-    """``rho V^2`` (Pa); exactly 0 without inertia, even where ``V^2`` overflows."""
-    return layer.density * speed**2 if layer.density > 0 else 0.0
-
-
 def mode_symbols(grid: Grid, layer: Layer, speed: float, blocks=("ww",)) -> dict:
     """Fourier weights ``g_PQ(m, n)`` for ``0 <= m <= N_tx``, ``0 <= n <= N_ty``.
 
@@ -68,7 +63,7 @@ def mode_symbols(grid: Grid, layer: Layer, speed: float, blocks=("ww",)) -> dict
         G = np.asarray(layer.material.modulus(-nu_x * speed), dtype=complex)
     weight = np.outer(np.sinc(m * g.spacing_x / g.period_x), np.sinc(n * g.spacing_y / g.period_y))
     weight /= g.period_x * g.period_y
-    rho_V2 = _rho_V2(layer, speed)
+    rho_V2 = layer.inertia(speed)
     out = {b: np.empty((m.size, n.size), dtype=complex) for b in blocks}
 
     def work(start: int) -> None:
@@ -219,7 +214,7 @@ def influence_kernels_direct(grid: Grid, layer: Layer, speed: float, blocks=("ww
     nu_x, nu_y = 2 * np.pi * m / g.period_x, 2 * np.pi * n / g.period_y
     with np.errstate(over="ignore"):
         G = np.asarray(layer.material.modulus(-nu_x * speed), dtype=complex)
-    C = surface_compliance(nu_x[:, None], nu_y[None, :], G[:, None], _rho_V2(layer, speed), layer.thickness)
+    C = surface_compliance(nu_x[:, None], nu_y[None, :], G[:, None], layer.inertia(speed), layer.thickness)
     # eqs. 56-59: Fourier coefficients of a unit force on a patch, without its phase
     with np.errstate(invalid="ignore", divide="ignore"):
         fx = np.where(m == 0, g.spacing_x / g.period_x, np.sin(np.pi * m * g.spacing_x / g.period_x) / (np.pi * m))

@@ -165,3 +165,32 @@ def test_a_speed_must_be_finite():
         Loading(math.inf, load=1.0)
     with pytest.raises(ValueError, match="speed must be finite and >= 0 m/s, got nan"):
         influence_kernels(GRID, NO_INERTIA, math.nan)
+
+
+def test_a_lossless_layer_is_limited_at_its_rayleigh_speed():
+    """An elastic layer resonates at the Rayleigh speed c_R = 0.9553 c_s (52.3 m/s for
+    G = 3 MPa, rho = 1000 kg/m^3), where the contact solve used to end without saying why;
+    just below it, it solves."""
+    from bem.problem import RAYLEIGH_RATIO
+
+    xi = RAYLEIGH_RATIO
+    assert (2 - xi * xi) ** 4 == pytest.approx(16 * (1 - xi * xi), rel=1e-14) and 0.955 < xi < 0.956
+    elastic = Layer(5e-3, Elastic(3.0e6), 1000.0)
+    with pytest.raises(ValueError, match=r"Rayleigh speed c_R = 0.9553 c_s = 52.3 m/s .*below 52.3 m/s"):
+        _problem(elastic, 52.4)
+    coarse = Grid.centred((1e-3, 1e-3), (0.2, 0.2), (100, 100), (8e-3, 8e-3))
+    at_rest, _ = solve_frictionless(_problem(elastic, 0.0, coarse))
+    fast, _ = solve_frictionless(_problem(elastic, 52.0, coarse))
+    # inertia softens the layer (7.5% deeper at 52 m/s) without any resonance yet
+    assert 1.0 < fast.indentation / at_rest.indentation < 1.1 and fast.load == pytest.approx(150.0)
+
+
+def test_the_energy_figure_is_finite_at_an_absurd_speed():
+    """rho V^2 is exactly 0 without inertia in the dissipation too (it overflowed at 1e300 m/s)."""
+    from bem.energy import viscous_dissipation
+
+    coarse = Grid.centred((1e-3, 1e-3), (0.2, 0.2), (100, 100), (6e-3, 6e-3))
+    force = np.zeros(coarse.shape)
+    force[coarse.shape[0] // 2, coarse.shape[1] // 2] = 1.0
+    for speed in (1e150, 1e300):
+        assert math.isfinite(viscous_dissipation(coarse, NO_INERTIA, speed, force, 0 * force, 0 * force))
