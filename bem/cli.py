@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import sys
 from pathlib import Path
 
@@ -16,68 +17,15 @@ from .contact import ContactError
 from .problem import solve_frictionless
 
 
-def _summary(problem, result, timings) -> dict:
-    g = problem.grid
-    r = result.record
-    return {
-        "rolling_resistance": result.rolling_resistance,
-        "indentation": result.indentation,
-        "contact_radius": result.contact_radius,
-        "load": result.load,
-        "peak_pressure": result.peak_pressure,
-        "contact_area": result.contact_area,
-        "pressure_centroid_x": result.centroid_x,
-        "speed": problem.loading.speed,
-        "grid": {
-            "nodes": [g.nodes_x, g.nodes_y],
-            "spacing": [g.spacing_x, g.spacing_y],
-            "period": [g.period_x, g.period_y],
-            "truncation": [g.truncation_x, g.truncation_y],
-        },
-        "solver": {
-            "active_set_iterations": r.iterations,
-            "active_history": list(r.active_history),
-            "linear_solver": r.linear_solver,
-            "linear_iterations": r.linear_iterations,
-            "complementarity_residual": r.residual,
-        },
-        "timings_s": timings,
-    }
-
-
-def _friction_summary(problem, result, timings) -> dict:
-    import math
-
-    r = result.record
-    num = lambda v: None if isinstance(v, float) and math.isnan(v) else v  # noqa: E731
-    out = {
-        "rolling_resistance": result.rolling_resistance,
-        "rolling_resistance_friction": result.rolling_resistance_friction,
-        "rolling_resistance_viscous": result.rolling_resistance_viscous,
-        "rolling_resistance_energy": num(result.rolling_resistance_energy),
-        "omega": num(result.omega),
-        "driving_force": result.driving_force,
-        "driving_torque": result.driving_torque,
-        "stick_fraction": num(result.stick_fraction),
-        "mu": result.mu,
-        "mode": result.mode,
-        "indentation": result.indentation,
-        "contact_radius": result.contact_radius,
-        "load": result.load,
-        "peak_pressure": result.peak_pressure,
-        "contact_area": result.contact_area,
-        "speed": result.speed,
-        "grid": {"nodes": [problem.grid.nodes_x, problem.grid.nodes_y]},
-        "solver": {
-            "iterations": r.iterations,
-            "gap_residual": r.gap_residual,
-            "stick_residual": r.stick_residual,
-            "coulomb_residual": r.coulomb_residual,
-            "history": [list(h) for h in r.history],
-        },
-        "timings_s": timings,
-    }
-    return out
+def _strict(value):
+    """``value`` with NaN and infinities as ``None``: strict JSON."""
+    if isinstance(value, dict):
+        return {k: _strict(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_strict(v) for v in value]
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    return value
 
 
 PLOT_SUFFIXES = (".png", ".pdf", ".svg")
@@ -152,7 +100,7 @@ def main(argv: list[str] | None = None) -> int:
     except ContactError as exc:
         print(f"bem: error: {type(exc).__name__}: {exc}", file=sys.stderr)
         return 1
-    summary = _summary(problem, result, timings) if friction is None else _friction_summary(problem, result, timings)
+    summary = _strict({**result.summary(), "speed": problem.loading.speed, "timings_s": timings})
     if args.json:
         print(json.dumps(summary, indent=2, allow_nan=False))
     else:

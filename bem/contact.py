@@ -35,7 +35,7 @@ from .operator import ComplianceOperator
 
 __all__ = [
     "ContactError", "ContactNotConverged", "ContactAtEdge", "SolveRecord", "NormalContact",
-    "solve_normal",
+    "solve_normal", "grid_summary",
 ]
 
 
@@ -53,12 +53,13 @@ class ContactAtEdge(ContactError):
 
 @dataclass(frozen=True)
 class SolveRecord:
-    """How a solve went: active-set iterations, contact-node counts per iteration,
-    linear solver (``dense`` or ``gmres``) and its total iterations, and the final
-    complementarity residual ``max(|min(F, h)|)`` relative to the indentation scale."""
+    """How a solve went, in the vocabulary of every solver of the project: active-set
+    ``iterations``, ``history`` (contact-node counts per iteration), ``linear_solver``
+    (``dense`` or ``gmres``) and its total ``linear_iterations``, and the final
+    complementarity ``residual`` ``max(|min(F, h)|)`` relative to the indentation scale."""
 
     iterations: int
-    active_history: tuple
+    history: tuple
     linear_solver: str
     linear_iterations: int
     residual: float
@@ -122,10 +123,38 @@ class NormalContact:
         return float(self.pressure.max())
 
     @property
-    def centroid_x(self) -> float:
+    def pressure_centroid_x(self) -> float:
         """``x`` of the resultant normal force (m); ``> 0`` means shifted to the leading edge."""
         X, _ = self.grid.coordinates()
         return float((self.force * X).sum() / self.force.sum())
+
+    def summary(self) -> dict:
+        """The scalars (SI units), the grid and the solve record as a JSON-ready dict; the
+        keys it shares with :meth:`bem.friction.FrictionalContact.summary` and
+        ``fem_reference.ContactResult.summary`` name the same quantities."""
+        g, r = self.grid, self.record
+        return {
+            "rolling_resistance": self.rolling_resistance,
+            "indentation": self.indentation,
+            "contact_radius": self.contact_radius,
+            "load": self.load,
+            "peak_pressure": self.peak_pressure,
+            "contact_area": self.contact_area,
+            "pressure_centroid_x": self.pressure_centroid_x,
+            "grid": grid_summary(g),
+            "solver": {"iterations": r.iterations, "residual": r.residual, "history": list(r.history),
+                       "linear_solver": r.linear_solver, "linear_iterations": r.linear_iterations},
+        }
+
+
+def grid_summary(grid: Grid) -> dict:
+    """Nodes, spacing (m), period (m) and truncation of a grid, as lists ``[x, y]``."""
+    return {
+        "nodes": [grid.nodes_x, grid.nodes_y],
+        "spacing": [grid.spacing_x, grid.spacing_y],
+        "period": [grid.period_x, grid.period_y],
+        "truncation": [grid.truncation_x, grid.truncation_y],
+    }
 
 
 def _edge_nodes(shape: tuple[int, int]) -> np.ndarray:

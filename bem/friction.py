@@ -43,7 +43,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .contact import ContactError, ContactNotConverged
+from .contact import ContactError, ContactNotConverged, grid_summary
 from .grid import Grid
 
 __all__ = [
@@ -149,6 +149,11 @@ class FrictionRecord:
     gap_residual: float
     stick_residual: float
     coulomb_residual: float
+
+    @property
+    def residual(self) -> float:
+        """The largest of the three residuals (-), the figure every solver record has."""
+        return max(self.gap_residual, self.stick_residual, self.coulomb_residual)
 
 
 @dataclass(frozen=True)
@@ -263,6 +268,42 @@ class FrictionalContact:
         return float(self.pressure.max())
 
     @property
+    def pressure_centroid_x(self) -> float:
+        """``x`` of the resultant normal force (m); ``> 0`` means shifted to the leading edge."""
+        X, _ = self.grid.coordinates()
+        return float((self.force * X).sum() / self.force.sum())
+
+    @property
     def friction_power(self) -> float:
         """``sum S . w`` over the contact (W), eq. 2 times ``V``."""
         return float((self.force_x * self.slip_x + self.force_y * self.slip_y).sum())
+
+    def summary(self) -> dict:
+        """The scalars (SI units), the grid and the solve record as a dict; the keys shared
+        with :meth:`bem.contact.NormalContact.summary` name the same quantities (``nan``
+        where a figure was not computed)."""
+        r = self.record
+        return {
+            "rolling_resistance": self.rolling_resistance,
+            "rolling_resistance_friction": self.rolling_resistance_friction,
+            "rolling_resistance_viscous": self.rolling_resistance_viscous,
+            "rolling_resistance_energy": self.rolling_resistance_energy,
+            "indentation": self.indentation,
+            "contact_radius": self.contact_radius,
+            "load": self.load,
+            "peak_pressure": self.peak_pressure,
+            "contact_area": self.contact_area,
+            "pressure_centroid_x": self.pressure_centroid_x,
+            "omega": self.omega,
+            "driving_force": self.driving_force,
+            "driving_torque": self.driving_torque,
+            "stick_fraction": self.stick_fraction,
+            "mu": self.mu,
+            "mode": self.mode,
+            "speed": self.speed,
+            "grid": grid_summary(self.grid),
+            "solver": {"iterations": r.iterations, "residual": r.residual, "history": [list(h) for h in r.history],
+                       "gap_residual": r.gap_residual, "stick_residual": r.stick_residual,
+                       "coulomb_residual": r.coulomb_residual, "linear_solver": r.linear_solver,
+                       "linear_iterations": r.linear_iterations},
+        }

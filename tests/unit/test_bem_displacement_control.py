@@ -98,7 +98,7 @@ def test_an_emptied_set_restarts_from_the_deepest_node(operators, monkeypatch):
     monkeypatch.setattr(bem.contact, "_coarse_start", lambda op, s, reachable, *args: reachable.copy())
     X, Y = GRID.coordinates()
     res = solve_normal(operators["rest"], Sphere(0.02).profile(X, Y), indentation=by_load.indentation)
-    assert res.record.active_history[:2] == (GRID.nodes_x * GRID.nodes_y, 1)
+    assert res.record.history[:2] == (GRID.nodes_x * GRID.nodes_y, 1)
     assert abs(res.load / by_load.load - 1) < DENSE_TOL
     np.testing.assert_array_equal(res.contact, by_load.contact)
 
