@@ -35,7 +35,7 @@ from .operator import ComplianceOperator
 
 __all__ = [
     "ContactError", "ContactNotConverged", "ContactAtEdge", "SolveRecord", "NormalContact",
-    "solve_normal", "grid_summary",
+    "solve_normal", "grid_summary", "pressure_centroid_x",
 ]
 
 
@@ -125,8 +125,7 @@ class NormalContact:
     @property
     def pressure_centroid_x(self) -> float:
         """``x`` of the resultant normal force (m); ``> 0`` means shifted to the leading edge."""
-        X, _ = self.grid.coordinates()
-        return float((self.force * X).sum() / self.force.sum())
+        return pressure_centroid_x(self.grid, self.force)
 
     def summary(self) -> dict:
         """The scalars (SI units), the grid and the solve record as a JSON-ready dict; the
@@ -145,6 +144,12 @@ class NormalContact:
             "solver": {"iterations": r.iterations, "residual": r.residual, "history": list(r.history),
                        "linear_solver": r.linear_solver, "linear_iterations": r.linear_iterations},
         }
+
+
+def pressure_centroid_x(grid: Grid, force: np.ndarray) -> float:
+    """``x`` (m) of the resultant of the compressive nodal forces ``force`` (N) on ``grid``."""
+    X, _ = grid.coordinates()
+    return float((force * X).sum() / force.sum())
 
 
 def grid_summary(grid: Grid) -> dict:

@@ -43,7 +43,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .contact import ContactError, ContactNotConverged, grid_summary
+from .contact import ContactError, ContactNotConverged, grid_summary, pressure_centroid_x
 from .grid import Grid
 
 __all__ = [
@@ -270,8 +270,7 @@ class FrictionalContact:
     @property
     def pressure_centroid_x(self) -> float:
         """``x`` of the resultant normal force (m); ``> 0`` means shifted to the leading edge."""
-        X, _ = self.grid.coordinates()
-        return float((self.force * X).sum() / self.force.sum())
+        return pressure_centroid_x(self.grid, self.force)
 
     @property
     def friction_power(self) -> float:
