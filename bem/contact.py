@@ -35,7 +35,7 @@ from .operator import ComplianceOperator
 
 __all__ = [
     "ContactError", "ContactNotConverged", "ContactAtEdge", "SolveRecord", "NormalContact",
-    "solve_normal", "grid_summary", "pressure_centroid_x",
+    "solve_normal", "grid_summary", "pressure_centroid_x", "SHARED_SCALARS",
 ]
 
 
@@ -131,19 +131,18 @@ class NormalContact:
         """The scalars (SI units), the grid and the solve record as a JSON-ready dict; the
         keys it shares with :meth:`bem.friction.FrictionalContact.summary` and
         ``fem_reference.ContactResult.summary`` name the same quantities."""
-        g, r = self.grid, self.record
+        r = self.record
         return {
-            "rolling_resistance": self.rolling_resistance,
-            "indentation": self.indentation,
-            "contact_radius": self.contact_radius,
-            "load": self.load,
-            "peak_pressure": self.peak_pressure,
-            "contact_area": self.contact_area,
-            "pressure_centroid_x": self.pressure_centroid_x,
-            "grid": grid_summary(g),
+            **{name: getattr(self, name) for name in SHARED_SCALARS},
+            "grid": grid_summary(self.grid),
             "solver": {"iterations": r.iterations, "residual": r.residual, "history": list(r.history),
                        "linear_solver": r.linear_solver, "linear_iterations": r.linear_iterations},
         }
+
+
+#: the scalars every BEM result reports under the same names (SI units)
+SHARED_SCALARS = ("rolling_resistance", "indentation", "contact_radius", "load", "peak_pressure", "contact_area",
+                  "pressure_centroid_x")
 
 
 def pressure_centroid_x(grid: Grid, force: np.ndarray) -> float:

@@ -43,7 +43,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .contact import ContactError, ContactNotConverged, grid_summary, pressure_centroid_x
+from .contact import SHARED_SCALARS, ContactError, ContactNotConverged, grid_summary, pressure_centroid_x
 from .grid import Grid
 
 __all__ = [
@@ -283,16 +283,10 @@ class FrictionalContact:
         where a figure was not computed)."""
         r = self.record
         return {
-            "rolling_resistance": self.rolling_resistance,
+            **{name: getattr(self, name) for name in SHARED_SCALARS},
             "rolling_resistance_friction": self.rolling_resistance_friction,
             "rolling_resistance_viscous": self.rolling_resistance_viscous,
             "rolling_resistance_energy": self.rolling_resistance_energy,
-            "indentation": self.indentation,
-            "contact_radius": self.contact_radius,
-            "load": self.load,
-            "peak_pressure": self.peak_pressure,
-            "contact_area": self.contact_area,
-            "pressure_centroid_x": self.pressure_centroid_x,
             "omega": self.omega,
             "driving_force": self.driving_force,
             "driving_torque": self.driving_torque,
