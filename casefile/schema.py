@@ -146,7 +146,7 @@ SCHEMA: tuple = (
     Section(
         "indenter", "the rigid indenter",
         keys=(Key("shape", "string", "-", "indenter shape", default="sphere",
-                  choices=("sphere", "paraboloid", "cylinder", "heightmap")),),
+                  choices=("sphere", "paraboloid", "cylinder", "heightmap", "line")),),
         required_by=BOTH,
         selector="shape",
         variants={
@@ -156,6 +156,9 @@ SCHEMA: tuple = (
                 _radius(("bem",)),
                 Key("length", "number", "m", "the roller's length along y", ("bem",), required=True, rule=">0"),
             ), readers=("bem",)),
+            "line": Variant("line", "plane strain: a rigid cylinder of radius R with its axis along y, in "
+                            "line contact; [loading] load is then per unit length along y (N/m)",
+                            (_radius(),)),
             "heightmap": Variant("heightmap", "a measured or computed surface", (
                 Key("file", "path", "-", "NPZ with arrays x (m, Kx), y (m, Ky), h (m, Ky x Kx): the gap "
                     "of the unloaded surface below the lowest point, >= 0", ("bem",), required=True),

@@ -91,7 +91,7 @@ def test_every_example_and_case_validates():
     ("loading.load=abc", "[loading] load takes number, and 'abc' is not one"),
     ("layer.thickness=-0.005", "[layer] thickness must be > 0 m, got -0.005"),
     ("layer.thickness=nan", "[layer] thickness must be finite (m), got nan"),
-    ("indenter.shape=cone", 'indenter] shape must be one of "sphere", "paraboloid", "cylinder", "heightmap", got '
+    ("indenter.shape=cone", 'indenter] shape must be one of "sphere", "paraboloid", "cylinder", "heightmap", "line", got '
                             "'cone'"),
     ("loading.indentation=1e-4", "[loading] needs exactly one of load and indentation, got load, indentation"),
 ])
