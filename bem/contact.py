@@ -163,7 +163,9 @@ def grid_summary(grid: Grid) -> dict:
 
 def _edge_nodes(shape: tuple[int, int]) -> np.ndarray:
     edge = np.zeros(shape, dtype=bool)
-    edge[0, :] = edge[-1, :] = edge[:, 0] = edge[:, -1] = True
+    edge[:, 0] = edge[:, -1] = True
+    if shape[0] > 1:  # a single row is a line contact (plane strain): its two ends only
+        edge[0, :] = edge[-1, :] = True
     return edge.ravel()
 
 
