@@ -145,17 +145,27 @@ def solve_frictionless(
     problem: Problem,
     progress: Callable[[str], None] | None = None,
     grow: bool = False,
+    kernels: dict | None = None,
 ) -> tuple[NormalContact, dict]:
     """Frictionless stationary or steady rolling contact.
 
     Returns the contact result and the timings (s) of the kernel and of the solve. With
     ``grow=True`` (an automatically sized region) a contact that reaches the edge of the
     region widens it by half and solves again; otherwise that raises
-    :class:`bem.contact.ContactAtEdge`.
+    :class:`bem.contact.ContactAtEdge`. Pass ``kernels`` (at least the ``"ww"`` table of
+    :func:`compute_kernels` for this grid, layer and speed) to reuse them; a widened
+    region computes its own.
     """
     p = problem
+    given = kernels
+    if given is not None and given["ww"].shape != (2 * p.grid.nodes_y - 1, 2 * p.grid.nodes_x - 1):
+        raise ValueError(f"kernels['ww'] has shape {given['ww'].shape}, the grid of {p.grid.nodes_x} x "
+                         f"{p.grid.nodes_y} nodes needs {(2 * p.grid.nodes_y - 1, 2 * p.grid.nodes_x - 1)}")
     while True:
-        kernels, kernel_s = compute_kernels(p, ("ww",), progress)
+        if given is not None:
+            kernels, kernel_s, given = given, 0.0, None
+        else:
+            kernels, kernel_s = compute_kernels(p, ("ww",), progress)
         op = ComplianceOperator(p.grid, kernels["ww"])
         t1 = time.perf_counter()
         X, Y = p.grid.coordinates()
