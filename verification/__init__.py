@@ -1,9 +1,18 @@
-"""Verification of the layer-contact models: analytic references (:mod:`verification.analytic`).
+"""Verification of the layer-contact models.
 
-The harness that runs ``bem`` and ``fem_reference`` on the same cases and compares them
-with these references lives here as well (added later).
+The flow, one module each, imports one way (top to bottom):
+
+- :mod:`.results`: the result types (``Level``, ``Run``, ``Gate``, ``Table``, ``CaseResult``);
+- :mod:`.schema`: the typed schema of a case file, checked before any solve;
+- :mod:`.analytic` and :mod:`.metrics`: analytic references, comparison metrics;
+- :mod:`.methods`: what is put through the cases (``bem``, ``fem``, plugins, results files);
+- :mod:`.kinds`: what a case runs, its tables and figures;
+- :mod:`.runner`: load and check the cases, run them;
+- :mod:`.report`: the atomic report, JUnit, drift against a baseline;
+- :mod:`.cli`: ``verify``.
 """
 
 from . import analytic
+from .results import CaseResult, Gate, Level, Run, Table
 
-__all__ = ["analytic"]
+__all__ = ["analytic", "CaseResult", "Gate", "Level", "Run", "Table"]

@@ -1,175 +1,188 @@
-"""The verification report: ``report.md``, ``report.html``, ``metrics.json`` and figures."""
+"""The verification report: ``summary.md`` (one screen, for a CI job summary),
+``report.md``, ``report.html``, ``metrics.json`` (strict JSON) and the figures; optionally
+a JUnit XML file with one test case per gate, and drift flags against an earlier run.
+
+Everything is written into a fresh folder beside ``out`` and renamed into place at the
+end: an interrupted run leaves the previous report complete and untouched, and nothing of
+an older run survives in the new one.
+"""
 
 from __future__ import annotations
 
 import html
 import json
 import math
+import os
+import shutil
+import tempfile
+from dataclasses import dataclass
 from pathlib import Path
+from xml.etree import ElementTree as ET
 
-import numpy as np
+from .formatting import fmt
+from .kinds import KINDS
+from .results import CaseResult, Gate, Table
 
-__all__ = ["write_report"]
+__all__ = ["write_report", "summary_line", "check_out", "check_junit", "load_baseline", "drift", "Drift", "ReportError"]
 
-
-def _figure(figsize):
-    """A bare :class:`matplotlib.figure.Figure` with constrained layout: no pyplot and no
-    ``matplotlib.use``, so writing a report never switches the caller's backend."""
-    from matplotlib.figure import Figure
-
-    return Figure(figsize=figsize, layout="constrained")
+GATE_HEAD = ("quantity", "method", "against", "level", "value", "reference", "error", "tolerance", "verdict",
+             "why this tolerance")
 
 
-def _reference_profile(result):
-    """The pressure field the maps are drawn against: FEM if run, else the analytic one."""
-    if "fem" in result.runs:
-        run = result.runs["fem"][-1]
-        order = np.argsort(run.r)
-        return "FEM", lambda x: np.interp(x, run.r[order], run.pressure[order], right=0.0)
-    if result.reference is not None:
-        return "analytic", result.reference.pressure
-    return None, None
+class ReportError(ValueError):
+    """A report that cannot be written where asked, or a baseline that cannot be read."""
 
 
-def _figures(result, out: Path) -> list[str]:
-    files = []
-    if result.kind == "stationary" and result.runs:
-        fig = _figure((6.4, 4.2))
-        ax = fig.subplots()
-        if "bem" in result.runs:
-            b = result.runs["bem"][-1]
-            ax.plot(b.r * 1e3, b.pressure / 1e6, ".", ms=2, alpha=0.4, label=f"BEM nodes, a = {b.size * 1e3:g} mm")
-        if "fem" in result.runs:
-            f = result.runs["fem"][-1]
-            o = np.argsort(f.r)
-            ax.plot(f.r[o] * 1e3, f.pressure[o] / 1e6, "-", lw=1.5, label=f"FEM, h = {f.size * 1e3:g} mm")
-        if result.reference is not None:
-            rr = np.linspace(0, 1.05 * result.reference.contact_radius, 300)
-            ax.plot(rr * 1e3, result.reference.pressure(rr) / 1e6, "k--", lw=1, label="analytic")
-        ax.set_xlabel("r (mm)")
-        ax.set_ylabel("contact pressure (MPa)")
-        ax.legend()
-        ax.grid(alpha=0.3)
-        files.append(f"{result.name}-profiles.png")
-        fig.savefig(out / files[-1], dpi=110)
-
-        name, ref = _reference_profile(result)
-        if "bem" in result.runs and ref is not None:
-            b = result.runs["bem"][-1]
-            X, Y = b.grid.coordinates()
-            peak = float(np.max(ref(np.linspace(0, b.r.max(), 500))))
-            diff = (b.field - ref(np.hypot(X, Y))) / peak * 100
-            lim = max(float(np.abs(diff).max()), 1e-6)
-            fig = _figure((5.6, 4.6))
-            ax = fig.subplots()
-            m = ax.pcolormesh(b.grid.x * 1e3, b.grid.y * 1e3, diff, cmap="RdBu_r", vmin=-lim, vmax=lim, shading="nearest")
-            fig.colorbar(m, ax=ax, label=f"(BEM - {name}) / peak (%)")
-            ax.set_aspect("equal")
-            ax.set_xlabel("x (mm)")
-            ax.set_ylabel("y (mm)")
-            files.append(f"{result.name}-difference.png")
-            fig.savefig(out / files[-1], dpi=110)
-
-        fig = _figure((6.4, 4.2))
-        ax = fig.subplots()
-        for method, runs in result.runs.items():
-            if len(runs) < 3:
-                continue
-            h = np.array([r.size for r in runs]) * 1e3
-            for q, marker in (("contact_radius", "o"), ("indentation", "s")):
-                conv = result.convergence.get((method, q))
-                if conv is None or not math.isfinite(conv.extrapolated):
-                    continue
-                err = np.abs(np.array(conv.values) - conv.extrapolated) / abs(conv.extrapolated)
-                ok = err > 0
-                if ok.any():
-                    ax.loglog(h[ok], err[ok], marker + "-", label=f"{method} {q} (p = {conv.order:.2f})")
-        ax.set_xlabel("element size / node spacing (mm)")
-        ax.set_ylabel("|q - q_Richardson| / |q|")
-        ax.grid(alpha=0.3, which="both")
-        if ax.lines:
-            ax.legend(fontsize=8)
-            files.append(f"{result.name}-convergence.png")
-            fig.savefig(out / files[-1], dpi=110)
-
-    if result.kind == "sweep" and result.extra.get("sweep"):
-        rows = result.extra["sweep"]
-        H = np.array([h for h, _ in rows]) * 1e3
-        fig = _figure((10, 4))
-        axes = fig.subplots(1, 2)
-        for q, ax in zip(("contact_radius", "indentation"), axes):
-            for method, style in (("bem", "o-"), ("fem", "s--")):
-                vals = [part.runs[method][-1].scalars[q] * 1e3 for _, part in rows if method in part.runs]
-                if vals:
-                    ax.semilogx(H[: len(vals)], vals, style, label=method.upper())
-            ax.set_xlabel("layer thickness H (mm)")
-            ax.set_ylabel(f"{q.replace('_', ' ')} (mm)")
-            ax.grid(alpha=0.3, which="both")
-            ax.legend()
-        files.append(f"{result.name}-sweep.png")
-        fig.savefig(out / files[-1], dpi=110)
-
-    if result.kind == "table1" and result.extra.get("table1"):
-        cells = result.extra["table1"]
-        fig = _figure((6.4, 4))
-        ax = fig.subplots()
-        for a in sorted({c[0] for c in cells}, reverse=True):
-            sel = [c for c in cells if c[0] == a]
-            ax.plot([c[1] for c in sel], [(c[2] - c[3]) * 1e4 for c in sel], "o-", label=f"a = {a:g} mm")
-        ax.axhspan(-1, 1, color="g", alpha=0.1, label="gate +/- 1e-4 N")
-        ax.set_xlabel("truncation order Nt")
-        ax.set_ylabel("R_r (ours) - R_r (paper)  (1e-4 N)")
-        ax.legend(fontsize=8)
-        ax.grid(alpha=0.3)
-        files.append(f"{result.name}-table1.png")
-        fig.savefig(out / files[-1], dpi=110)
-    return files
+def _probe(folder: Path, what: str) -> None:
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+        with tempfile.TemporaryDirectory(dir=folder, prefix=".verify-probe-"):
+            pass
+    except OSError as exc:
+        raise ReportError(f"{what}: cannot write in {str(folder)!r}: {exc.strerror or exc}") from None
 
 
-def _fmt(v: float) -> str:
-    if v is None or (isinstance(v, float) and not math.isfinite(v)):
-        return "-"
-    return f"{v:.6g}"
+def check_out(out: Path) -> Path:
+    """``--out``: a folder (existing or to be made) in a writable place; checked before any solve."""
+    out = Path(out)
+    if out.exists() and not out.is_dir():
+        raise ReportError(f"--out {str(out)!r} is a file, not a folder")
+    parent = out.parent
+    while not parent.exists():
+        if parent.is_file():
+            raise ReportError(f"--out {str(out)!r}: {str(parent)!r} is a file")
+        parent = parent.parent
+    if parent.is_file() or not os.access(parent, os.W_OK):
+        raise ReportError(f"--out {str(out)!r}: {str(parent)!r} is not a writable folder")
+    return out
 
 
-def _gate_rows(result):
-    return [
-        [g.quantity, g.method, g.against, g.level, _fmt(g.value), _fmt(g.reference), f"{g.error:.2e}",
-         f"{g.tolerance:.1e}", g.verdict, g.reason]
-        for g in result.gates
-    ]
+def check_junit(path: Path) -> Path:
+    """``--junit FILE.xml``: an XML file name in a writable folder."""
+    path = Path(path)
+    if path.suffix != ".xml":
+        raise ReportError(f"--junit {str(path)!r}: the file name must end in .xml")
+    if path.is_dir():
+        raise ReportError(f"--junit {str(path)!r} is a folder")
+    parent = path.parent if str(path.parent) else Path(".")
+    if not parent.is_dir() or not os.access(parent, os.W_OK):
+        raise ReportError(f"--junit {str(path)!r}: {str(parent)!r} is not a writable folder")
+    return path
 
 
-GATE_HEAD = ["quantity", "method", "against", "level", "value", "reference", "error", "tolerance", "verdict", "why this tolerance"]
+# --- strict JSON --------------------------------------------------------------------
 
 
-def _run_rows(result):
-    rows = []
-    for method, runs in result.runs.items():
-        for r in runs:
-            s = r.scalars
-            rows.append([method, f"{r.size * 1e3:g}", _fmt(s["contact_radius"] * 1e3), _fmt(s["indentation"] * 1e3),
-                         _fmt(s["peak_pressure"] / 1e6), f"{r.seconds:.1f}"])
-        for q in ("contact_radius", "indentation"):
-            c = result.convergence.get((method, q))
-            if c is not None:
-                scale = 1e3
-                note = f"order {c.order:.2f}" + ("" if c.asymptotic else " (not asymptotic: finest kept)")
-                rows.append([method, f"Richardson {q}", _fmt(c.extrapolated * scale) if q == "contact_radius" else "",
-                             _fmt(c.extrapolated * scale) if q == "indentation" else "", note, ""])
-    return rows
+def _strict(obj):
+    """NaN and infinities as null: metrics.json is strict JSON (RFC 8259)."""
+    if isinstance(obj, float):
+        return obj if math.isfinite(obj) else None
+    if isinstance(obj, dict):
+        return {str(k): _strict(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [_strict(v) for v in obj]
+    if hasattr(obj, "item"):  # numpy scalars
+        return _strict(obj.item())
+    return obj
 
 
-RUN_HEAD = ["method", "h or a (mm)", "r_c (mm)", "d (mm)", "p_max (MPa)", "time (s)"]
+def _gate_dict(g: Gate) -> dict:
+    return {"key": g.key, "quantity": g.quantity, "method": g.method, "against": g.against, "level": g.level,
+            "value": g.value, "reference": g.reference, "error": g.error, "tolerance": g.tolerance,
+            "margin": g.margin, "passed": g.passed, "verdict": g.verdict, "reason": g.reason}
 
 
-def _md_table(head, rows):
+def _metrics(results: list[CaseResult], drifts: list) -> dict:
+    return _strict({
+        "passed": bool(results) and all(r.passed for r in results),
+        "drift": [d.as_dict() for d in drifts],
+        "cases": [
+            {
+                "name": r.name, "title": r.title, "kind": r.kind, "passed": r.passed, "seconds": r.seconds,
+                "runs": {m: [{"size": run.size, **run.scalars, "seconds": run.seconds} for run in runs]
+                         for m, runs in r.runs.items()},
+                "convergence": {f"{m}.{q}": {"values": list(c.values), "order": c.order,
+                                              "extrapolated": c.extrapolated, "error_finest": c.error_finest,
+                                              "asymptotic": c.asymptotic}
+                                for (m, q), c in r.convergence.items()},
+                "gates": [_gate_dict(g) for g in r.gates],
+            }
+            for r in results
+        ],
+    })
+
+
+# --- drift against a baseline -------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Drift:
+    """A gate whose error moved by more than ``fraction`` of its tolerance since the baseline."""
+
+    key: str
+    before: float | None
+    now: float | None
+    tolerance: float
+    note: str
+
+    def as_dict(self) -> dict:
+        return {"key": self.key, "before": self.before, "now": self.now, "tolerance": self.tolerance,
+                "note": self.note}
+
+
+def load_baseline(path: Path) -> dict:
+    """The gates of an earlier ``metrics.json``, by key; checked before any solve."""
+    path = Path(path)
+    try:
+        doc = json.loads(path.read_text())
+        gates = {g["key"]: g for c in doc["cases"] for g in c["gates"]}
+    except (OSError, ValueError, KeyError, TypeError) as exc:
+        raise ReportError(f"--baseline {str(path)!r}: not a metrics.json of this harness ({exc})") from None
+    return gates
+
+
+def drift(results: list[CaseResult], baseline: dict, fraction: float) -> list[Drift]:
+    """Gates that moved by more than ``fraction`` of their tolerance, and gates that
+    appeared or vanished (of the cases run)."""
+    out = []
+    now = {g.key: g for r in results for g in r.gates if not g.report_only}
+    cases = {r.name for r in results}
+    for key, g in now.items():
+        old = baseline.get(key)
+        if old is None:
+            out.append(Drift(key, None, g.error, g.tolerance, "new gate (not in the baseline)"))
+            continue
+        before = old.get("error")
+        if before is None or not math.isfinite(g.error):
+            if (before is None) != (not math.isfinite(g.error)):
+                out.append(Drift(key, before, g.error, g.tolerance, "error became undefined or defined"))
+            continue
+        moved = abs(g.error - before)
+        if moved > fraction * g.tolerance:
+            out.append(Drift(key, before, g.error, g.tolerance,
+                             f"moved by {moved / g.tolerance:.2f} of the tolerance ({'worse' if g.error > before else 'better'})"))
+    for key, old in baseline.items():
+        case = key.split(":", 1)[0].split("[", 1)[0]
+        if case in cases and key not in now and old.get("verdict") != "REPORTED":
+            out.append(Drift(key, old.get("error"), None, old.get("tolerance") or math.nan, "gate gone since the baseline"))
+    return out
+
+
+# --- text ---------------------------------------------------------------------------
+
+
+def _gate_rows(result: CaseResult):
+    return [(g.quantity, g.method, g.against, g.level, fmt(g.value), fmt(g.reference), f"{g.error:.2e}",
+             f"{g.tolerance:.1e}", g.verdict, g.reason) for g in result.gates]
+
+
+def _md_table(head, rows) -> str:
     out = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
-    out += ["| " + " | ".join(str(c).replace("|", "/") for c in row) + " |" for row in rows]
+    out += ["| " + " | ".join(str(c).replace("|", "/").replace("\n", " ") for c in row) + " |" for row in rows]
     return "\n".join(out)
 
 
-def _html_table(head, rows):
+def _html_table(head, rows) -> str:
     h = "".join(f"<th>{html.escape(c)}</th>" for c in head)
     body = ""
     for row in rows:
@@ -178,68 +191,135 @@ def _html_table(head, rows):
     return f"<table><tr>{h}</tr>{body}</table>"
 
 
-def _metrics(results) -> dict:
-    return {
-        "passed": all(r.passed for r in results),
-        "cases": [
-            {
-                "name": r.name,
-                "title": r.title,
-                "passed": r.passed,
-                "seconds": r.seconds,
-                "runs": {m: [{"size": run.size, **{k: float(v) for k, v in run.scalars.items()}, "seconds": run.seconds}
-                             for run in runs] for m, runs in r.runs.items()},
-                "convergence": {f"{m}.{q}": {"values": list(c.values), "order": c.order, "extrapolated": c.extrapolated,
-                                              "error_finest": c.error_finest, "asymptotic": c.asymptotic}
-                                for (m, q), c in r.convergence.items()},
-                "gates": [{"quantity": g.quantity, "method": g.method, "against": g.against, "level": g.level,
-                           "value": g.value, "reference": g.reference, "error": g.error, "tolerance": g.tolerance,
-                           "passed": g.passed, "verdict": g.verdict, "reason": g.reason} for g in r.gates],
-            }
-            for r in results
-        ],
-    }
-
-
-def write_report(results, out: Path) -> Path:
-    """Write the report of ``results`` (list of CaseResult) into ``out``; return report.md."""
-    out = Path(out)
-    out.mkdir(parents=True, exist_ok=True)
-    (out / "metrics.json").write_text(json.dumps(_metrics(results), indent=1, default=float))
+def summary_line(results: list[CaseResult]) -> str:
+    """``PASS: 6 of 6 cases, 120 of 120 gates pass (...), 79 s.`` (or FAIL)."""
     gated = [g for r in results for g in r.gates if not g.report_only]
     reported = sum(g.report_only for r in results for g in r.gates)
-    line = (f"{sum(g.passed for g in gated)} of {len(gated)} gates pass in {len(results)} case(s); "
-            f"{reported} further comparisons are reported without a gate.")
-    md = [f"# Verification report\n\n{line}\n"]
-    body = [f"<h1>Verification report</h1><p>{html.escape(line)}</p>"]
+    ok = bool(results) and all(r.passed for r in results)
+    seconds = sum(r.seconds for r in results)
+    return (f"{'PASS' if ok else 'FAIL'}: {sum(r.passed for r in results)} of {len(results)} cases, "
+            f"{sum(g.passed for g in gated)} of {len(gated)} gates pass ({reported} further comparisons "
+            f"reported without a gate), {seconds:.0f} s.")
+
+
+def _summary(results: list[CaseResult], drifts: list[Drift]) -> tuple[str, Table, Table | None]:
+    line = summary_line(results)
+    rows = []
     for r in results:
-        figs = _figures(r, out)
+        w = r.worst
+        n = [g for g in r.gates if not g.report_only]
+        rows.append((r.name, "PASS" if r.passed else "FAIL", f"{sum(g.passed for g in n)}/{len(n)}",
+                     f"{w.method} {w.quantity} vs {w.against} ({w.level})" if w else "-",
+                     f"{w.margin:.2f}" if w and math.isfinite(w.margin) else "-", f"{r.seconds:.0f}"))
+    cases = Table("Summary", ("case", "verdict", "gates", "worst gate", "error / tolerance", "time (s)"), tuple(rows))
+    flags = None
+    if drifts:
+        flags = Table("Drift since the baseline", ("gate", "error before", "error now", "tolerance", "note"),
+                      tuple((d.key, fmt(d.before), fmt(d.now), fmt(d.tolerance), d.note) for d in drifts))
+    return line, cases, flags
+
+
+def _junit(results: list[CaseResult]) -> bytes:
+    suites = ET.Element("testsuites", name="verify")
+    for r in results:
+        suite = ET.SubElement(suites, "testsuite", name=r.name, tests=str(len(r.gates)),
+                              failures=str(sum(not g.passed for g in r.gates)),
+                              skipped=str(sum(g.report_only for g in r.gates)), time=f"{r.seconds:.3f}")
+        for g in r.gates:
+            case = ET.SubElement(suite, "testcase", classname=f"verify.{r.name}",
+                                 name=f"{g.method} {g.quantity} vs {g.against} ({g.level})")
+            text = (f"error {g.error:.3e}, tolerance {g.tolerance:.1e} (value {fmt(g.value)}, reference "
+                    f"{fmt(g.reference)}): {g.reason}")
+            if g.report_only:
+                ET.SubElement(case, "skipped", message="reported without a gate").text = text
+            elif not g.passed:
+                ET.SubElement(case, "failure", message=f"error {g.error:.3e} > tolerance {g.tolerance:.1e}",
+                              type="GateFailed").text = text
+            else:
+                ET.SubElement(case, "system-out").text = text
+    return ET.tostring(suites, encoding="utf-8", xml_declaration=True)
+
+
+def _write_all(results, folder: Path, drifts: list[Drift]) -> None:
+    line, summary, flags = _summary(results, drifts)
+    top = [f"# Verification report\n\n**{line}**\n", _md_table(summary.head, summary.rows) + "\n"]
+    if flags:
+        top += [f"## {flags.title}\n", _md_table(flags.head, flags.rows) + "\n"]
+    (folder / "summary.md").write_text("\n".join(top))
+    md = list(top)
+    body = [f"<h1>Verification report</h1><p><b>{html.escape(line)}</b></p>", _html_table(summary.head, summary.rows)]
+    if flags:
+        body += [f"<h2>{flags.title}</h2>", _html_table(flags.head, flags.rows)]
+    for r in results:
+        kind = KINDS.get(r.kind)
+        figs = kind.figures(r, folder) if kind and r.gates and r.gates[0].quantity != "run" else []
         verdict = "PASS" if r.passed else "FAIL"
         md.append(f"## {r.name}: {verdict}\n\n**{r.title}** ({r.seconds:.1f} s)\n\n{r.why.strip()}\n")
-        body.append(f"<h2>{html.escape(r.name)}: <span class='{verdict.lower()}'>{verdict}</span></h2>"
-                    f"<p><b>{html.escape(r.title)}</b> ({r.seconds:.1f} s)</p><p>{html.escape(r.why.strip())}</p>")
-        if r.runs:
-            md.append(_md_table(RUN_HEAD, _run_rows(r)) + "\n")
-            body.append(_html_table(RUN_HEAD, _run_rows(r)))
-        if r.kind == "sweep":
-            rows = []
-            for H, part in r.extra.get("sweep", []):
-                b, f = part.runs["bem"][-1].scalars, part.runs["fem"][-1].scalars
-                rc = part.runs["bem"][-1].scalars["contact_radius"]
-                rows.append([f"{H * 1e3:g}", f"{H / rc:.3g}", _fmt(b["contact_radius"] * 1e3), _fmt(f["contact_radius"] * 1e3),
-                             _fmt(b["indentation"] * 1e3), _fmt(f["indentation"] * 1e3)])
-            head = ["H (mm)", "H / r_c", "r_c BEM (mm)", "r_c FEM (mm)", "d BEM (mm)", "d FEM (mm)"]
-            md.append(_md_table(head, rows) + "\n")
-            body.append(_html_table(head, rows))
-        md.append(_md_table(GATE_HEAD, _gate_rows(r)) + "\n")
-        body.append(_html_table(GATE_HEAD, _gate_rows(r)))
+        body.append(f"<h2 id='{html.escape(r.name)}'>{html.escape(r.name)}: <span class='{verdict.lower()}'>{verdict}"
+                    f"</span></h2><p><b>{html.escape(r.title)}</b> ({r.seconds:.1f} s)</p>"
+                    f"<p>{html.escape(r.why.strip())}</p>")
+        for table in kind.tables(r) if kind else []:
+            md.append(f"**{table.title}**\n\n" + _md_table(table.head, table.rows) + "\n")
+            body.append(f"<h3>{html.escape(table.title)}</h3>" + _html_table(table.head, table.rows))
+        md.append("**Gates**\n\n" + _md_table(GATE_HEAD, _gate_rows(r)) + "\n")
+        body.append("<h3>Gates</h3>" + _html_table(GATE_HEAD, _gate_rows(r)))
         for f in figs:
             md.append(f"![{f}]({f})\n")
             body.append(f"<img src='{html.escape(f)}' alt='{html.escape(f)}'>")
-    (out / "report.md").write_text("\n".join(md))
+    (folder / "report.md").write_text("\n".join(md))
     style = ("body{font-family:sans-serif;max-width:1100px;margin:auto}table{border-collapse:collapse;margin:8px 0}"
              "td,th{border:1px solid #ccc;padding:2px 6px;font-size:13px}tr.fail{background:#fdd}"
              ".pass{color:green}.fail{color:#b00}img{max-width:49%;margin:4px}")
-    (out / "report.html").write_text(f"<!doctype html><html><head><meta charset='utf-8'><title>Verification report"
-                                     f"</title><style>{style}</style></head><body>{''.join(body)}</body></html>")
+    (folder / "report.html").write_text(f"<!doctype html><html><head><meta charset='utf-8'><title>Verification "
+                                        f"report</title><style>{style}</style></head><body>{''.join(body)}</body></html>")
+    # metrics.json last: its presence says the folder is complete
+    (folder / "metrics.json").write_text(json.dumps(_metrics(results, drifts), indent=1, allow_nan=False))
+
+
+def _clean_stale(out: Path) -> None:
+    """Remove staging folders of runs that were killed (their process is gone)."""
+    for stale in out.parent.glob(f".{out.name}.partial-*"):
+        try:
+            pid = int(stale.name.rsplit("-", 1)[1])
+            os.kill(pid, 0)
+        except (ValueError, ProcessLookupError):
+            shutil.rmtree(stale, ignore_errors=True)
+        except PermissionError:
+            pass
+
+
+def _replace(folder: Path, out: Path) -> None:
+    """Put the complete ``folder`` where ``out`` is; the old one goes only after."""
+    old = out.parent / f".{out.name}.old-{os.getpid()}"
+    if out.exists():
+        os.rename(out, old)
+    os.rename(folder, out)
+    shutil.rmtree(old, ignore_errors=True)
+
+
+def write_report(results: list[CaseResult], out: Path, junit: Path | None = None,
+                 drifts: list[Drift] = ()) -> Path:
+    """Write the report of ``results`` into the folder ``out`` (atomically: built beside
+    it and renamed into place); return ``out / "report.md"``.
+
+    ``junit``: also a JUnit XML file, one test case per gate. ``drifts``: the gates that
+    moved since a baseline (:func:`drift`), flagged in the summary.
+    """
+    out = check_out(Path(out))
+    out.parent.mkdir(parents=True, exist_ok=True)
+    _clean_stale(out)
+    staging = out.parent / f".{out.name}.partial-{os.getpid()}"
+    shutil.rmtree(staging, ignore_errors=True)
+    staging.mkdir()
+    try:
+        _write_all(results, staging, drifts)
+        if junit is not None:
+            junit = Path(junit)
+            tmp = junit.with_name(f".{junit.name}.partial-{os.getpid()}")
+            tmp.write_bytes(_junit(results))
+            os.replace(tmp, junit)
+        _replace(staging, out)
+    except BaseException:
+        shutil.rmtree(staging, ignore_errors=True)
+        raise
     return out / "report.md"

@@ -1,0 +1,37 @@
+"""Case kinds: what a case runs. Each kind is a module with
+
+- ``SECTIONS``: the case-file sections it reads besides the header, ``[problem]`` and
+  ``[[gates]]`` (name -> :class:`verification.schema.Field` table, or a checker);
+- ``check(case, path, methods)``: every kind-specific rule, raising
+  :class:`verification.schema.CaseError` before anything is solved;
+- ``run(case, context) -> CaseResult``: the solves and the gates;
+- ``tables(result)`` and ``figures(result, folder)``: what the report shows.
+
+The report knows kinds only through these four names.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Callable
+
+from . import rolling_limits, stationary, sweep, table1
+
+__all__ = ["KINDS", "Context"]
+
+KINDS = {
+    "stationary": stationary,
+    "sweep": sweep,
+    "table1": table1,
+    "rolling-limits": rolling_limits,
+}
+
+
+@dataclass
+class Context:
+    """What a kind's ``run`` gets besides the case: progress lines, the quick flag and the
+    methods by name."""
+
+    progress: Callable[[str], None] = print
+    quick: bool = False
+    methods: dict = field(default_factory=dict)

@@ -1,0 +1,57 @@
+"""The BEM (:mod:`bem`) as a verification method: one grid per level."""
+
+from __future__ import annotations
+
+import math
+import time
+
+import numpy as np
+
+from ..metrics import fit_contact_radius
+from ..results import Level, Run
+from ..schema import Field, check_table
+
+__all__ = ["FIELDS", "check", "run", "solve"]
+
+FIELDS = {
+    "spacings": Field("numbers", True, positive=True, doc="node spacings a (m), coarse to fine"),
+    "period": Field("number", positive=True, doc="period L of the Fourier series (m), default 0.2"),
+    "half_width": Field("number", True, positive=True, doc="candidate region |x|, |y| <= half_width (m)"),
+    "truncation_factor": Field("number", positive=True, doc="Nt = ceil(factor L / 2a), default 1"),
+}
+
+
+def check(settings: dict, problem: dict, where: str) -> None:
+    """``[bem]``: the keys above and nothing else."""
+    check_table(settings, FIELDS, where)
+
+
+def run(problem_cfg: dict, settings: dict, spacing: float) -> Run:
+    """The BEM on one grid of node spacing ``spacing`` (m); the truncation resolves the
+    grid (``Nt = ceil(factor L / 2a)``)."""
+    from bem.case import problem_from_config
+    from bem.problem import solve_frictionless
+
+    period = settings.get("period", 0.2)
+    nt = math.ceil(settings.get("truncation_factor", 1.0) * period / (2 * spacing) - 1e-9)
+    cfg = {k: dict(v) for k, v in problem_cfg.items()}
+    cfg["grid"] = {"spacing": spacing, "period": period, "truncation": nt, "half_width": settings["half_width"]}
+    problem, _ = problem_from_config(cfg)
+    t = time.perf_counter()
+    res, _ = solve_frictionless(problem)
+    seconds = time.perf_counter() - t
+    X, Y = problem.grid.coordinates()
+    r = np.hypot(X, Y)
+    scalars = {
+        "contact_radius": fit_contact_radius(r, res.gap, res.contact, spacing),
+        "indentation": res.indentation,
+        "peak_pressure": res.peak_pressure,
+        "load": res.load,
+        "rolling_resistance": res.rolling_resistance,
+    }
+    return Run("bem", spacing, scalars, r.ravel(), res.pressure.ravel(), seconds, problem.grid, res.pressure)
+
+
+def solve(problem: dict, level: Level) -> Run:
+    """The method protocol: the case's ``[problem]`` at one level of ``[bem] spacings``."""
+    return run(problem, level.settings, level.size)

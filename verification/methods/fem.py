@@ -1,0 +1,62 @@
+"""The finite-element reference (:mod:`fem_reference`) as a verification method."""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+import casefile
+
+from ..metrics import fit_contact_radius
+from ..results import Level, Run
+from ..schema import CaseError, Field, check_table
+
+__all__ = ["FIELDS", "check", "run", "solve"]
+
+FIELDS = {
+    "element_sizes": Field("numbers", True, positive=True, doc="element sizes at the contact (m), coarse to fine"),
+}
+
+
+def check(settings: dict, problem: dict, where: str) -> None:
+    """``[fem]``: ``element_sizes`` and any key of the case-file schema's ``[fem]``
+    section, checked by :func:`casefile.validate` as ``fem-reference solve`` would."""
+    check_table(settings, FIELDS, where, open_=True)
+    rest = {k: v for k, v in settings.items() if k != "element_sizes"}
+    if "element_size" in rest:
+        raise CaseError(f"{where}: give the levels as element_sizes, not element_size")
+    try:
+        casefile.validate({**problem, "fem": {**rest, "element_size": settings["element_sizes"][0]}},
+                          tool="fem", source=where)
+    except casefile.CaseFileError as exc:
+        raise CaseError(str(exc)) from None
+
+
+def run(problem_cfg: dict, settings: dict, size: float) -> Run:
+    """The axisymmetric (or 3D) FEM with element size ``size`` (m) at the contact."""
+    import fem_reference as fr
+    from fem_reference.case import problem_from_dict
+
+    problem = problem_from_dict({**problem_cfg, "fem": {**settings, "element_size": size}})
+    t = time.perf_counter()
+    res = fr.solve(problem)
+    seconds = time.perf_counter() - t
+    # the same radius definition as for the BEM, from the FEM's own surface gap
+    ind = problem.indenter
+    rs = np.asarray(res.surface_radius)
+    gap = ind.profile(np.minimum(rs, 0.99 * ind.radius)) - res.indentation - np.asarray(res.surface_uz)
+    r_contact = float(np.max(res.radius[res.pressure > 0]))
+    contact = rs <= r_contact * (1 + 1e-12)
+    scalars = {
+        "contact_radius": fit_contact_radius(rs, gap, contact, res.mesh.element_size),
+        "indentation": res.indentation,
+        "peak_pressure": res.peak_pressure,
+        "load": res.load,
+    }
+    return Run("fem", size, scalars, np.asarray(res.radius), np.asarray(res.pressure), seconds)
+
+
+def solve(problem: dict, level: Level) -> Run:
+    """The method protocol: the case's ``[problem]`` at one level of ``[fem] element_sizes``."""
+    return run(problem, level.settings, level.size)
