@@ -127,7 +127,7 @@ def test_harness_builds_the_fem_problem_through_fem_reference(tmp_path):
     """The harness no longer builds the FEM problem by hand: a viscoelastic material is
     refused by name instead of being read as elastic."""
     from fem_reference import InputError
-    from verification.runner import run_fem
+    from verification.methods.fem import run as run_fem
 
     problem = {"layer": {"thickness": 5e-3}, "material": {"model": "three_parameter", "G0": 3e6, "tau": 0.25, "f": 1.0},
                "indenter": {"shape": "sphere", "radius": 0.02}, "loading": {"load": 100.0}}
