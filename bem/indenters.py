@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.interpolate import RegularGridInterpolator
 
-__all__ = ["Sphere", "Paraboloid", "Cylinder", "HeightMap"]
+__all__ = ["Sphere", "Paraboloid", "Cylinder", "LineCylinder", "HeightMap"]
 
 
 def _check_radius(radius: float) -> None:
@@ -84,6 +84,33 @@ class Cylinder:
 
     def rolling_arm(self, X, Y):
         return np.asarray(X) / self.radius
+
+
+@dataclass(frozen=True)
+class LineCylinder:
+    """Rigid cylinder of radius ``radius`` (m) with its axis along ``y``, infinitely long:
+    line contact in plane strain (:mod:`bem.plane`), loads per unit length (N/m).
+
+    ``g = R - sqrt(R^2 - x^2)`` (exact circle), ``arm = x / R``; the nodes of a
+    :class:`bem.plane.LineGrid` have ``Y = 0``, which the profile ignores.
+    """
+
+    radius: float
+
+    def __post_init__(self) -> None:
+        _check_radius(self.radius)
+
+    def profile(self, X, Y=None):
+        X = np.asarray(X, float)
+        if np.any(X**2 >= self.radius**2):
+            raise ValueError(
+                f"the grid reaches |x| = {float(np.max(np.abs(X))):.4g} m, beyond the cylinder's radius "
+                f"{self.radius} m: reduce grid.half_width"
+            )
+        return X**2 / (self.radius + np.sqrt(self.radius**2 - X**2))  # R - sqrt(R^2 - x^2), no cancellation
+
+    def rolling_arm(self, X, Y=None):
+        return np.asarray(X, float) / self.radius
 
 
 @dataclass(frozen=True)

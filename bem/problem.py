@@ -13,7 +13,9 @@ from .contact import ContactAtEdge, NormalContact, solve_normal
 from .grid import Grid
 from .layer import Layer
 from .materials import Elastic
+from .indenters import LineCylinder
 from .operator import ComplianceOperator
+from .plane import LineGrid, solve_line
 from .spectral import influence_kernels
 
 __all__ = ["Loading", "Problem", "check_subsonic", "compute_kernels", "solve_frictionless", "auto_half_width"]
@@ -90,8 +92,11 @@ def check_subsonic(layer: Layer, speed: float) -> None:
 class Problem:
     """Rigid ``indenter`` on ``layer`` under ``loading``, discretized by ``grid``.
 
-    Raises ``ValueError`` when the speed is at or above the layer's shear-wave speed
-    (see :func:`check_subsonic`).
+    A :class:`bem.indenters.LineCylinder` (plane strain, line contact) goes with a
+    :class:`bem.plane.LineGrid` and a load per unit length (N/m); every other indenter with
+    a :class:`bem.grid.Grid`. Raises ``ValueError`` when the speed is at or above the
+    layer's shear-wave speed (see :func:`check_subsonic`), and ``TypeError`` when the
+    indenter and the grid do not match.
     """
 
     layer: Layer
@@ -100,7 +105,19 @@ class Problem:
     loading: Loading
 
     def __post_init__(self) -> None:
+        line, line_grid = isinstance(self.indenter, LineCylinder), isinstance(self.grid, LineGrid)
+        if line != line_grid:
+            raise TypeError(
+                f"a {type(self.indenter).__name__} indenter needs a {'LineGrid' if line else 'Grid'}, got a "
+                f"{type(self.grid).__name__}: plane strain (LineCylinder) is solved on a LineGrid of one row, "
+                "every 3D indenter on a Grid"
+            )
         check_subsonic(self.layer, self.loading.speed)
+
+    @property
+    def plane_strain(self) -> bool:
+        """Whether this is a line contact per unit length (a :class:`LineCylinder`)."""
+        return isinstance(self.indenter, LineCylinder)
 
 
 def auto_half_width(layer: Layer, indenter, loading: Loading, spacing: float) -> float:
@@ -114,6 +131,13 @@ def auto_half_width(layer: Layer, indenter, loading: Loading, spacing: float) ->
     R = getattr(indenter, "radius", None)
     if R is None:
         raise ValueError("give grid.half_width for an indenter without a radius")
+    if isinstance(indenter, LineCylinder):  # 2D Hertz with G(0): b = sqrt(P R / (pi G0)), P in N/m
+        G0 = abs(complex(layer.material.modulus(0.0)))
+        if loading.load is not None:
+            b = math.sqrt(loading.load * R / (math.pi * G0))
+        else:
+            b = math.sqrt(2 * R * loading.indentation)
+        return min(1.25 * b + 2 * spacing, 0.9 * R)
     if loading.load is not None:
         G0 = abs(complex(layer.material.modulus(0.0)))
         a = (3 * loading.load * R / (16 * G0)) ** (1 / 3)
@@ -147,7 +171,8 @@ def solve_frictionless(
     grow: bool = False,
     kernels: dict | None = None,
 ) -> tuple[NormalContact, dict]:
-    """Frictionless stationary or steady rolling contact.
+    """Frictionless stationary or steady rolling contact (a line contact per unit length,
+    :func:`bem.plane.solve_line`, for a :class:`bem.indenters.LineCylinder`).
 
     Returns the contact result and the timings (s) of the kernel and of the solve. With
     ``grow=True`` (an automatically sized region) a contact that reaches the edge of the
@@ -157,6 +182,8 @@ def solve_frictionless(
     region computes its own.
     """
     p = problem
+    if p.plane_strain:
+        return solve_line(p, progress=progress, grow=grow, kernels=kernels)
     given = kernels
     if given is not None and given["ww"].shape != (2 * p.grid.nodes_y - 1, 2 * p.grid.nodes_x - 1):
         raise ValueError(f"kernels['ww'] has shape {given['ww'].shape}, the grid of {p.grid.nodes_x} x "

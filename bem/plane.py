@@ -1,0 +1,414 @@
+"""Plane strain: a rigid cylinder in line contact with the layer, per unit length along ``y``.
+
+The two-dimensional analogue of the paper's formulation (derivation in
+``docs/derivations.md``, section "Plane strain"). Every field is uniform along ``y``, so
+only the ``n = 0`` modes (``nu_y = 0``) of the layer's compliance remain, and a line load
+``q`` (N/m) spread uniformly over the patch ``|x - x_N| <= a/2`` of node ``N`` deflects
+the surface at node ``M`` by
+
+    w(M) = q  sum_{|m| <= N_t}  sinc(m a / L) / L  C_ww(nu_m, 0; G*(-nu_m V))  exp(i nu_m (x_M - x_N))
+
+with ``nu_m = 2 pi m / L``: the 3D kernel of eqs. 56-62 with the ``n``-sum reduced to
+``n = 0`` and the ``1 / L_y`` dropped (one unit of length along ``y`` instead of a patch
+``a_y``). The same steady moving frame, complex modulus at ``omega_m = -nu_m V`` and
+inertia ``rho V^2`` as in 3D (:mod:`bem.layer`).
+
+:class:`LineGrid` is a grid of one row that offers the attributes
+:class:`bem.operator.ComplianceOperator` and :func:`bem.contact.solve_normal` read (its
+``cell_area`` is the spacing: the patch area per unit length, m), so the 3D contact
+solver runs unchanged on it; forces are then per unit length (N/m) and pressures in Pa.
+:func:`solve_line` solves a :class:`bem.problem.Problem` whose indenter is a
+:class:`bem.indenters.LineCylinder` and returns a :class:`LineContact`.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, replace
+from typing import Callable
+
+import numpy as np
+
+from .contact import SHARED_SCALARS, ContactAtEdge, NormalContact, solve_normal
+from .layer import Layer, normal_compliance_outer
+from .operator import ComplianceOperator
+from .spectral import _chirp_sum
+
+__all__ = [
+    "LineGrid", "LineContact", "line_mode_symbols", "line_kernel", "line_kernel_direct",
+    "line_dissipation", "contact_edges", "solve_line",
+]
+
+
+def _positive(name: str, value, unit: str) -> None:
+    if isinstance(value, bool) or not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
+        raise ValueError(f"{name} must be > 0 {unit}, got {value!r}")
+
+
+@dataclass(frozen=True)
+class LineGrid:
+    """A row of ``nodes`` nodes along ``x``, centred on the cylinder's axis (plane strain).
+
+    Node ``i`` sits at ``x_i = (i - (nodes - 1)/2) spacing`` and carries the uniform line
+    load of its patch ``|x - x_i| <= spacing / 2`` (N/m spread over the patch). The layer is
+    periodic in ``x`` with period ``period`` and the Fourier series keeps ``|m| <=
+    truncation``.
+
+    Parameters
+    ----------
+    spacing : float
+        Node spacing ``a`` (m), > 0.
+    period : float
+        Period ``L`` (m), > the span of the nodes; need not be a multiple of ``a``.
+    truncation : int
+        ``N_t >= L / (2 a)``, so that the modes resolve the node spacing.
+    nodes : int
+        Node count ``K``, >= 1.
+
+    Notes
+    -----
+    For :func:`bem.contact.solve_normal` and :class:`bem.operator.ComplianceOperator` it
+    looks like a :class:`bem.grid.Grid` of one row: ``shape = (1, K)``, ``nodes_x = K``,
+    ``nodes_y = 1``, ``y = [0]`` and ``cell_area = spacing`` (m^2 per m of length).
+    """
+
+    spacing: float
+    period: float
+    truncation: int
+    nodes: int
+
+    def __post_init__(self) -> None:
+        _positive("spacing", self.spacing, "m")
+        _positive("period", self.period, "m")
+        for name in ("truncation", "nodes"):
+            val = getattr(self, name)
+            if isinstance(val, bool) or not (isinstance(val, (int, np.integer)) and val >= 1):
+                raise ValueError(f"{name} must be an integer >= 1, got {val!r}")
+        if (self.nodes - 1) * self.spacing >= self.period:
+            raise ValueError(
+                f"nodes = {self.nodes} at spacing = {self.spacing} m span {(self.nodes - 1) * self.spacing} m, "
+                f"which must be < period = {self.period} m"
+            )
+        need = math.ceil(self.period / (2 * self.spacing) - 1e-9)
+        if self.truncation < need:
+            raise ValueError(
+                f"truncation must be >= period/(2 spacing) = {need} so that the Fourier modes resolve "
+                f"the node spacing, got {self.truncation}"
+            )
+
+    @classmethod
+    def centred(cls, spacing: float, period: float, truncation: int, half_width: float) -> "LineGrid":
+        """Grid with a node on the axis and nodes at ``|x| <= half_width`` (m)."""
+        _positive("spacing", spacing, "m")
+        _positive("half_width", half_width, "m")
+        return cls(spacing, period, truncation, 2 * int(math.floor(half_width / spacing + 1e-9)) + 1)
+
+    # --- the Grid interface the contact solver and the operator read -------------------
+    @property
+    def shape(self) -> tuple[int, int]:
+        """Field shape ``(1, nodes)``."""
+        return (1, self.nodes)
+
+    @property
+    def nodes_x(self) -> int:
+        return self.nodes
+
+    @property
+    def nodes_y(self) -> int:
+        return 1
+
+    @property
+    def spacing_x(self) -> float:
+        return self.spacing
+
+    @property
+    def period_x(self) -> float:
+        return self.period
+
+    @property
+    def truncation_x(self) -> int:
+        return self.truncation
+
+    @property
+    def x(self) -> np.ndarray:
+        """Node abscissae (m), shape ``(nodes,)``."""
+        return (np.arange(self.nodes) - (self.nodes - 1) / 2) * self.spacing
+
+    @property
+    def y(self) -> np.ndarray:
+        """``[0.0]``: the one row."""
+        return np.zeros(1)
+
+    @property
+    def cell_area(self) -> float:
+        """Patch area per unit length along ``y``: the spacing ``a`` (m)."""
+        return self.spacing
+
+    def coordinates(self) -> tuple[np.ndarray, np.ndarray]:
+        """``X, Y`` (m), each of shape ``(1, nodes)``."""
+        return self.x[None, :], np.zeros((1, self.nodes))
+
+    def summary(self) -> dict:
+        """Nodes, spacing (m), period (m) and truncation, each a list of one entry (``x``)."""
+        return {"nodes": [self.nodes], "spacing": [self.spacing], "period": [self.period],
+                "truncation": [self.truncation]}
+
+
+# ---------------------------------------------------------------------------------------
+# kernel
+
+
+def line_mode_symbols(grid: LineGrid, layer: Layer, speed: float) -> np.ndarray:
+    """Fourier weights ``g_m = sinc(m a / L) C_ww(nu_m, 0) / L`` for ``m = 0 .. N_t``.
+
+    Complex, shape ``(N_t + 1,)``, in m/(N/m) = m^2/N; ``C_ww`` of the layer at
+    ``G*(-nu_m V)`` with the inertia ``rho V^2`` (``speed`` is ``V``, m/s). The modes
+    ``-m`` are the complex conjugates (a real relaxation function).
+    """
+    g = grid
+    m = np.arange(g.truncation + 1)
+    nu = 2 * np.pi * m / g.period
+    with np.errstate(over="ignore"):  # |omega| = inf is the glassy limit, finite in every material
+        G = np.asarray(layer.material.modulus(-nu * speed), dtype=complex)
+    C = normal_compliance_outer(nu, np.zeros(1), G, layer.inertia(speed), layer.thickness)[:, 0]
+    return C * np.sinc(m * g.spacing / g.period) / g.period
+
+
+def _check_speed(speed: float) -> None:
+    if not (isinstance(speed, (int, float)) and math.isfinite(speed) and speed >= 0):
+        raise ValueError(f"speed must be finite and >= 0 m/s, got {speed!r}")
+
+
+def line_kernel(grid: LineGrid, layer: Layer, speed: float) -> np.ndarray:
+    """Kernel table of the line grid: ``K[0, j + K - 1]`` is the deflection (m, positive
+    upwards, the paper's sign) at offset ``j a`` from a unit line load (N/m, in tension)
+    on a patch, for ``j = -(K-1) .. K-1``; shape ``(1, 2 K - 1)``.
+
+    Evaluated as ``Re(g_0 + 2 sum_{m >= 1} g_m exp(2 pi i m j a / L))`` by one chirp-z
+    (Bluestein) transform, ``O(N_t log N_t)``. Raises ``ValueError`` for a bad speed or a
+    non-finite kernel (naming the speed and the grid).
+    """
+    _check_speed(speed)
+    sym = line_mode_symbols(grid, layer, speed)
+    coef = 2 * sym
+    coef[0] = sym[0]
+    K = grid.nodes
+    table = _chirp_sum(coef, grid.spacing / grid.period, -(K - 1), 2 * K - 1).real[None, :]
+    if not np.isfinite(table).all():
+        raise ValueError(
+            f"the line kernel is not finite at speed = {speed:g} m/s on the grid of {K} nodes "
+            f"(a = {grid.spacing:g} m, L = {grid.period:g} m, N_t = {grid.truncation}): the material's "
+            "modulus or the layer's compliance is not finite at some mode; use a lower loading.speed "
+            "or check the material model"
+        )
+    return table
+
+
+def line_kernel_direct(grid: LineGrid, layer: Layer, speed: float) -> np.ndarray:
+    """The same table by summing every mode ``|m| <= N_t`` explicitly (``O(N_t K)``):
+    the slow reference for :func:`line_kernel`."""
+    _check_speed(speed)
+    sym = line_mode_symbols(grid, layer, speed)
+    full = np.concatenate([np.conj(sym[:0:-1]), sym])  # m = -N_t .. N_t
+    m = np.arange(-grid.truncation, grid.truncation + 1)
+    K = grid.nodes
+    j = np.arange(-(K - 1), K)
+    phase = 2 * np.pi * np.mod(np.outer(j, m) * (grid.spacing / grid.period), 1.0)
+    return (np.exp(1j * phase) @ full).real[None, :]
+
+
+def line_dissipation(grid: LineGrid, layer: Layer, speed: float, force: np.ndarray) -> float:
+    """Power dissipated per unit length (W/m) by compressive nodal line loads ``force``
+    (N/m, shape ``(nodes,)`` or ``(1, nodes)``) in steady motion at ``speed`` (m/s).
+
+    The 1-D form of :func:`bem.energy.viscous_dissipation` (``n = 0`` only, normal
+    traction only): ``P = 2 V L sum_{m > 0} nu_m |t_m|^2 Im C_ww(nu_m, 0)`` with
+    ``t_m = sinc(m a / L) / L sum_N F_N exp(-i nu_m x_N)`` the Fourier coefficients of the
+    traction. It integrates the layer's continuous fields, independently of the nodal
+    collocation and of the rolling arm; ``P / V`` is the energy figure of the rolling
+    resistance (N/m).
+    """
+    g = grid
+    F = np.asarray(force, float).reshape(-1)
+    m = np.arange(1, g.truncation + 1)
+    nu = 2 * np.pi * m / g.period
+    with np.errstate(over="ignore"):
+        G = np.asarray(layer.material.modulus(-nu * speed), dtype=complex)
+    C = normal_compliance_outer(nu, np.zeros(1), G, layer.inertia(speed), layer.thickness)[:, 0]
+    # t_m by chirp-z: sum_N F_N exp(-2 pi i m x_N / L), x_N = (N - (K-1)/2) a
+    K = g.nodes
+    shift = np.exp(2j * np.pi * np.mod(m * (K - 1) / 2 * g.spacing / g.period, 1.0))
+    t = _chirp_sum(F.astype(complex)[None, :], -g.spacing / g.period, 1, g.truncation)[0] * shift
+    t *= np.sinc(m * g.spacing / g.period) / g.period
+    return float(2 * speed * g.period * np.sum(nu * np.abs(t) ** 2 * C.imag))
+
+
+# ---------------------------------------------------------------------------------------
+# results
+
+
+def contact_edges(grid: LineGrid, force: np.ndarray, gap: np.ndarray | None = None) -> tuple[float, float]:
+    """Trailing and leading edges (m) of the contact ``[x_t, x_l]`` from the nodal line
+    loads ``force`` (N/m) and, if given, the gap ``gap`` (m) of a solve.
+
+    At the edges of a smooth frictionless contact the pressure vanishes like
+    ``sqrt(distance)`` and the gap opens like ``distance^(3/2)``. Each edge is where the
+    line through ``h^(2/3)`` at the first two free nodes beyond the outermost loaded node
+    reaches zero (clamped to the spacing between the outermost loaded node and the first
+    free one); without a gap, or without two free nodes, where the line through ``p^2`` at
+    the outermost loaded node and its inner neighbour does. Measured against 2D Hertz
+    (``docs/derivations.md``, plane strain) both are within 0.13 spacings of the edge, the
+    gap's within 0.10; a single loaded node gives its patch, ``x +/- a/2``.
+    """
+    F = np.asarray(force, float).reshape(-1)
+    idx = np.flatnonzero(F > 0)
+    if idx.size == 0:
+        raise ValueError("no node carries load: the contact has no edges")
+    x, a = grid.x, grid.spacing
+    if idx.size == 1:
+        return float(x[idx[0]] - a / 2), float(x[idx[0]] + a / 2)
+    h = None if gap is None else np.asarray(gap, float).reshape(-1)
+
+    def edge(outer: int, step: int) -> float:
+        first, second = outer + step, outer + 2 * step
+        if h is not None and 0 <= second < x.size and 0 < h[first] < h[second] and np.isfinite(h[second]):
+            r = (h[first] / h[second]) ** (2 / 3)
+            e = (x[first] - r * x[second]) / (1 - r)
+            lo, hi = sorted((x[outer], x[first]))
+            return float(min(max(e, lo), hi))
+        p2o, p2i = F[outer] ** 2, F[outer - step] ** 2
+        frac = p2o / (p2i - p2o) if p2i > p2o else 1.0
+        return float(x[outer] + step * a * min(frac, 1.0))
+
+    return edge(idx[0], -1), edge(idx[-1], 1)
+
+
+@dataclass(frozen=True)
+class LineContact(NormalContact):
+    """Frictionless line contact per unit length (plane strain): a :class:`NormalContact`
+    on a :class:`LineGrid`, fields of shape ``(1, K)``.
+
+    Units change with the dimension: ``force`` is the nodal line load (N/m), ``load`` the
+    load per unit length (N/m), ``rolling_resistance`` ``sum F x / R`` (N/m),
+    ``contact_area`` the contact length (m: the loaded nodes' patches); ``pressure``
+    stays in Pa and ``indentation``, ``deflection``, ``gap`` in m.
+
+    Attributes
+    ----------
+    trailing_edge, leading_edge : float
+        The contact's edges (m), from :func:`contact_edges`; ``x > 0`` is ahead.
+    rolling_resistance_energy : float
+        ``P_visc / V`` (N/m) from :func:`line_dissipation` (NaN at rest): the energy
+        figure of the rolling resistance, equal to it in steady rolling up to the
+        discretization.
+    """
+
+    trailing_edge: float = math.nan
+    leading_edge: float = math.nan
+    rolling_resistance_energy: float = math.nan
+
+    @property
+    def contact_radius(self) -> float:
+        """Half the contact length between the edges, ``(x_l - x_t) / 2`` (m): the
+        half-width ``b`` of the line contact."""
+        return 0.5 * (self.leading_edge - self.trailing_edge)
+
+    @property
+    def half_width(self) -> float:
+        """The same as :attr:`contact_radius` (m)."""
+        return self.contact_radius
+
+    @property
+    def contact_centre(self) -> float:
+        """``(x_l + x_t) / 2`` (m): the offset of the contact's middle from the axis."""
+        return 0.5 * (self.leading_edge + self.trailing_edge)
+
+    @property
+    def x(self) -> np.ndarray:
+        """Node abscissae (m)."""
+        return self.grid.x
+
+    @property
+    def pressure_profile(self) -> np.ndarray:
+        """Nodal pressure along ``x`` (Pa), shape ``(K,)``."""
+        return self.pressure[0]
+
+    def summary(self) -> dict:
+        """As :meth:`NormalContact.summary` (same names), plus ``trailing_edge``,
+        ``leading_edge``, ``half_width``, ``contact_centre`` (m) and
+        ``rolling_resistance_energy`` (N/m), ``"model": "plane strain"`` and the grid as
+        lists of one entry; forces per unit length (N/m)."""
+        r = self.record
+        out = {name: getattr(self, name) for name in SHARED_SCALARS}
+        out.update({
+            "solver": {"iterations": r.iterations, "residual": r.residual, "history": list(r.history),
+                       "linear_solver": r.linear_solver, "linear_iterations": r.linear_iterations},
+            "model": "plane strain",
+            "trailing_edge": self.trailing_edge,
+            "leading_edge": self.leading_edge,
+            "half_width": self.half_width,
+            "contact_centre": self.contact_centre,
+            "rolling_resistance_energy": self.rolling_resistance_energy,
+            "grid": self.grid.summary(),
+        })
+        return out
+
+
+# ---------------------------------------------------------------------------------------
+# solve
+
+
+def solve_line(problem, progress: Callable[[str], None] | None = None, grow: bool = False,
+               kernels: dict | None = None, dense_limit: int = 3000) -> tuple[LineContact, dict]:
+    """Frictionless stationary or steady rolling line contact of a
+    :class:`bem.problem.Problem` with a :class:`bem.indenters.LineCylinder` on a
+    :class:`LineGrid` (load control: ``loading.load`` in N/m).
+
+    Returns the :class:`LineContact` and the timings (s) of the kernel and of the solve.
+    With ``grow=True`` a contact that reaches the edge of the region widens the region by
+    half and solves again (up to 0.95 of the radius); otherwise
+    :class:`bem.contact.ContactAtEdge` propagates. ``kernels={"ww": table}`` reuses a
+    :func:`line_kernel` table of this grid, layer and speed (a widened region computes
+    its own).
+    """
+    from .problem import check_subsonic
+
+    p = problem
+    if not isinstance(p.grid, LineGrid):
+        raise TypeError(f"solve_line needs a LineGrid, got {type(p.grid).__name__}")
+    given = None if kernels is None else kernels["ww"]
+    if given is not None and np.shape(given) != (1, 2 * p.grid.nodes - 1):
+        raise ValueError(f"kernels['ww'] has shape {np.shape(given)}, the line grid of {p.grid.nodes} nodes "
+                         f"needs {(1, 2 * p.grid.nodes - 1)}")
+    while True:
+        check_subsonic(p.layer, p.loading.speed)
+        t0 = time.perf_counter()
+        kernel, given = (line_kernel(p.grid, p.layer, p.loading.speed) if given is None else given), None
+        kernel_s = time.perf_counter() - t0
+        if progress:
+            progress(f"line compliance: {p.grid.nodes} nodes, Nt = {p.grid.truncation}, {kernel_s:.2f} s")
+        op = ComplianceOperator(p.grid, kernel)
+        X, Y = p.grid.coordinates()
+        t1 = time.perf_counter()
+        try:
+            res = solve_normal(op, p.indenter.profile(X, Y), load=p.loading.load,
+                               indentation=p.loading.indentation, arm=p.indenter.rolling_arm(X, Y),
+                               progress=progress, dense_limit=dense_limit)
+        except ContactAtEdge:
+            g = p.grid
+            cap = 0.95 * p.indenter.radius
+            if not grow or g.x[-1] >= 0.9 * cap:
+                raise
+            bigger = LineGrid.centred(g.spacing, g.period, g.truncation, min(1.5 * g.x[-1], cap))
+            if progress:
+                progress(f"contact reached the region's edge: widening to |x| <= {bigger.x[-1]:.4g} m")
+            p = replace(p, grid=bigger)
+            continue
+        solve_s = time.perf_counter() - t1
+        trailing, leading = contact_edges(p.grid, res.force, res.gap)
+        V = p.loading.speed
+        energy = line_dissipation(p.grid, p.layer, V, res.force) / V if V > 0 else math.nan
+        fields = {name: getattr(res, name) for name in NormalContact.__dataclass_fields__}
+        out = LineContact(**fields, trailing_edge=trailing, leading_edge=leading, rolling_resistance_energy=energy)
+        return out, {"kernel_s": kernel_s, "solve_s": solve_s}
