@@ -601,3 +601,252 @@ def thin_layer_normal_compliance_static(wavenumber, thickness: float, shear_modu
     G = _positive("shear_modulus", shear_modulus, "Pa")
     k = _wavenumbers(wavenumber)
     return k * k * H**3 / (3 * G)
+
+
+# ---------------------------------------------------------------------------------------
+# Plane strain: 2D Hertz and Hunter (1961), a rigid cylinder rolling on a viscoelastic
+# half-space. Derivation: docs/derivations.md, section "Plane strain: line contact".
+
+
+@dataclass(frozen=True)
+class HertzLineContact:
+    """Rigid cylinder (parabolic profile ``x^2 / (2 R)``) on an incompressible elastic
+    half-space in plane strain, per unit length along the axis (all SI).
+
+    Attributes
+    ----------
+    load : float
+        ``P`` (N/m).
+    radius : float
+        ``R`` (m).
+    shear_modulus : float
+        ``G`` (Pa); the contact modulus is ``E* = 4 G``.
+    half_width : float
+        ``b = sqrt(4 P R / (pi E*)) = sqrt(P R / (pi G))`` (m) (Johnson 1985, eq. 4.43).
+    peak_pressure : float
+        ``p0 = 2 P / (pi b) = 2 G b / R`` (Pa).
+    """
+
+    load: float
+    radius: float
+    shear_modulus: float
+    half_width: float
+    peak_pressure: float
+
+    def pressure(self, x):
+        """``p0 sqrt(1 - x^2 / b^2)`` (Pa, compressive) at ``x`` (m), 0 for ``|x| >= b``."""
+        return self.peak_pressure * _disc(x, self.half_width, np.sqrt)
+
+
+def hertz_line_contact(load: float, radius: float, shear_modulus: float) -> HertzLineContact:
+    """2D Hertz (line contact) of a rigid cylinder on an incompressible half-space.
+
+    Parameters
+    ----------
+    load : float
+        Load per unit length ``P`` (N/m), > 0.
+    radius : float
+        ``R`` (m), > 0.
+    shear_modulus : float
+        ``G`` (Pa), > 0.
+    """
+    P = _positive("load", load, "N/m")
+    R = _positive("radius", radius, "m")
+    G = _positive("shear_modulus", shear_modulus, "Pa")
+    b = math.sqrt(P * R / (math.pi * G))
+    return HertzLineContact(P, R, G, b, 2 * P / (math.pi * b))
+
+
+@dataclass(frozen=True)
+class HunterRollingContact:
+    """Steady rolling of a rigid cylinder on an incompressible three-parameter (standard
+    linear solid) viscoelastic half-space, frictionless, per unit length (Hunter 1961).
+
+    Inputs as :func:`hunter_rolling_contact`; lengths in m, measured in the frame of the
+    cylinder with ``x > 0`` ahead (the direction of motion).
+
+    Attributes
+    ----------
+    half_width : float
+        ``a`` (m), half the contact length.
+    centre : float
+        ``c`` (m), the middle of the contact: ``x`` in ``[c - a, c + a]``.
+    trailing_edge, leading_edge : float
+        ``c - a`` and ``c + a`` (m).
+    rolling_resistance : float
+        ``R_r = integral p x dx / R`` (N/m): the moment of the pressure about the axis over
+        the radius, the BEM's definition.
+    pressure_centroid_x : float
+        ``integral p x dx / P`` (m).
+    coefficients : ndarray
+        ``beta_n`` (Pa), ``n = 1, 2, ...``: ``p = sum_n beta_n sin(n theta)`` with
+        ``x = c + a cos(theta)``.
+    amplitude : float
+        ``A`` (Pa): the exponential part ``A exp(kappa (x - c - a))`` of the
+        unit-modulus surface slope in the contact, ``kappa = (1 + f) / (V tau)``.
+    """
+
+    load: float
+    radius: float
+    G0: float
+    tau: float
+    f: float
+    speed: float
+    half_width: float
+    centre: float
+    amplitude: float
+    coefficients: np.ndarray
+
+    @property
+    def trailing_edge(self) -> float:
+        return self.centre - self.half_width
+
+    @property
+    def leading_edge(self) -> float:
+        return self.centre + self.half_width
+
+    @property
+    def pressure_centroid_x(self) -> float:
+        b = self.coefficients
+        second = b[1] if b.size > 1 else 0.0
+        return self.centre + self.half_width**2 * math.pi * second / (4 * self.load)
+
+    @property
+    def rolling_resistance(self) -> float:
+        return self.load * self.pressure_centroid_x / self.radius
+
+    @property
+    def rolling_resistance_coefficient(self) -> float:
+        """``R_r / P`` (-)."""
+        return self.pressure_centroid_x / self.radius
+
+    @property
+    def peak_pressure(self) -> float:
+        """Largest pressure (Pa), on a fine sampling of the contact."""
+        th = np.linspace(0, math.pi, 4001)
+        return float(self._series(th).max())
+
+    def _series(self, theta):
+        n = np.arange(1, self.coefficients.size + 1)
+        return np.sin(np.multiply.outer(theta, n)) @ self.coefficients
+
+    def pressure(self, x):
+        """Contact pressure (Pa, compressive) at ``x`` (m, array_like), 0 outside the
+        contact: ``sum_n beta_n sin(n theta)``, ``cos(theta) = (x - c) / a``."""
+        x = np.asarray(x, dtype=float)
+        t = (x - self.centre) / self.half_width
+        inside = np.abs(t) < 1
+        th = np.arccos(np.where(inside, t, 0.0))
+        return np.where(inside, self._series(th), 0.0)
+
+
+def _hunter_terms(k: float, count: int | None = None) -> np.ndarray:
+    """``exp(-k) I_n(k)`` for ``n = 0 .. N`` with ``N`` large enough that the rest is below
+    1e-17 of the first terms."""
+    from scipy.special import ive
+
+    if count is None:
+        count = int(k + 12 * math.sqrt(k + 1) + 40)
+    n = np.arange(count + 1)
+    return ive(n, k)
+
+
+def hunter_rolling_contact(load: float, radius: float, G0: float, tau: float, f: float,
+                           speed: float) -> HunterRollingContact:
+    r"""Hunter's (1961) rigid cylinder rolling on a standard-linear-solid half-space.
+
+    The material is the paper's three-parameter solid (eq. 71, :class:`bem.materials.
+    ThreeParameterSolid`): relaxed shear modulus ``G0``, glassy ``G0 (1 + f)``, creep
+    (retardation) time ``tau``, relaxation time ``tau / (1 + f)``; shear creep compliance
+    ``J(t) = 1/G0 - f / (G0 (1 + f)) exp(-t / tau)``; incompressible.
+    In the frame of the cylinder (speed ``V`` in ``+x``) the unit-modulus surface slope
+    ``phi = (1 / 2 pi) PV integral p(s) / (s - x) ds`` satisfies, in the contact
+    ``[c - a, c + a]``, the first-order equation
+
+    .. math:: \frac{\phi}{G_0} - \frac{V\tau}{G_0(1+f)}\phi' = -\frac{x - V\tau}{R}
+
+    whose solution is ``phi = -(G0/R) x + G0 f V tau / ((1+f) R) + A exp(kappa (x - c - a))``,
+    ``kappa = (1 + f) / (V tau)``. Inverting the finite Hilbert transform with the pressure
+    bounded at both edges (Chebyshev-Bessel series, ``k = kappa a``) gives the pressure
+    ``p = sum beta_n sin(n theta)`` with ``beta_1 = 2 G0 a / R - 4 A e^{-k} I_1(k)``,
+    ``beta_n = -4 A e^{-k} I_n(k)``, and two closed-form conditions (solvability and load);
+    the third, the slope equation itself at the leading edge (which the differentiated form
+    lost), holds the memory of the material ahead of the contact and is one quadrature.
+    ``a`` is found by a bracketed root search. Derivation: ``docs/derivations.md``.
+
+    Parameters
+    ----------
+    load : float
+        Load per unit length ``P`` (N/m), > 0.
+    radius : float
+        Cylinder radius ``R`` (m), > 0 (parabolic profile, ``a << R``).
+    G0 : float
+        Relaxed shear modulus (Pa), > 0.
+    tau : float
+        Creep (retardation) time of eq. 71 (s), > 0.
+    f : float
+        ``G1 / G2`` (-), >= 0; glassy modulus ``G0 (1 + f)``.
+    speed : float
+        ``V`` (m/s), >= 0; 0 gives relaxed 2D Hertz.
+
+    Returns
+    -------
+    HunterRollingContact
+    """
+    from scipy.integrate import quad
+
+    P = _positive("load", load, "N/m")
+    R = _positive("radius", radius, "m")
+    G0 = _positive("G0", G0, "Pa")
+    tau = _positive("tau", tau, "s")
+    f = _number("f", f, "(dimensionless)")
+    if f < 0:
+        raise ValueError(f"f must be >= 0, got {f!r}")
+    V = _number("speed", speed, "m/s")
+    if V < 0:
+        raise ValueError(f"speed must be >= 0 m/s, got {speed!r}")
+    b0 = math.sqrt(P * R / (math.pi * G0))
+    if V == 0 or f == 0:
+        return HunterRollingContact(P, R, G0, tau, f, V, b0, 0.0, 0.0, np.array([2 * G0 * b0 / R]))
+    lam = V * tau  # creep length (m)
+    kappa = (1 + f) / lam  # 1 / (V tau_relax)
+    B = G0 * f / (kappa * R)  # the constant of the particular solution (-)
+    Jg, dJ = 1 / (G0 * (1 + f)), f / (G0 * (1 + f))
+
+    def state(a: float):
+        k = kappa * a
+        e = _hunter_terms(k)
+        A = (math.pi * G0 * a * a / R - P) / (2 * math.pi * a * e[1])  # load
+        c = R / G0 * (B + A * e[0])  # solvability
+        beta = -4 * A * e[1:]
+        beta[0] += 2 * G0 * a / R
+        return k, A, c, beta
+
+    def residual(a: float) -> float:
+        k, A, c, beta = state(a)
+        mu = a / lam
+        n = np.arange(1, beta.size + 1)
+        # tail integral I(c2) = a int_0^inf exp(-mu (cosh t - 1)) sinh t Phi(cosh t) dt,
+        # Phi(cosh t) = -(1/2) sum beta_n exp(-n t): the slope ahead of the contact
+        t_max = math.acosh(1 + 745.0 / mu) if mu > 0 else 50.0
+
+        def integrand(t):
+            return math.exp(-mu * (math.cosh(t) - 1)) * math.sinh(t) * float(beta @ np.exp(-n * t))
+
+        tail, _ = quad(integrand, 0.0, min(t_max, 60.0), limit=400, epsabs=0.0, epsrel=1e-12)
+        I_c2 = -0.5 * a * tail
+        phi_c2 = -0.5 * beta.sum()  # the slope at the leading edge, from either side
+        return Jg * phi_c2 + dJ / lam * I_c2 + (c + a) / R
+
+    bg = math.sqrt(P * R / (math.pi * G0 * (1 + f)))
+    lo, hi = 0.5 * bg, 1.5 * b0
+    r_lo, r_hi = residual(lo), residual(hi)
+    if not r_lo * r_hi < 0:
+        raise ArithmeticError(f"Hunter's end condition is not bracketed in a in [{lo:g}, {hi:g}] m "
+                              f"(residuals {r_lo:g}, {r_hi:g}) at V tau / b0 = {lam / b0:g}")
+    a = brentq(residual, lo, hi, xtol=1e-15 * b0, rtol=1e-15, maxiter=200)
+    k, A, c, beta = state(a)
+    return HunterRollingContact(P, R, G0, tau, f, V, a, c, A, beta)
+
+
+__all__ += ["HertzLineContact", "hertz_line_contact", "HunterRollingContact", "hunter_rolling_contact"]
