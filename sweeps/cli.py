@@ -1,0 +1,91 @@
+"""``sweep FILE.toml``: run a parametric study of BEM cases on Dask.
+
+Writes, in ``--out`` (default ``out/sweeps/<name>``): ``results.csv`` (one row per point,
+as they arrive), ``summary.json`` (counts and times), ``plot-<result>.png`` and
+``fits.csv`` / ``fits.json``. Exit status: 0 every point solved, 1 some point failed (its
+row says why), 2 bad input (the sweep file, a point's case, an unreachable scheduler),
+130 interrupted (the finished rows are kept; run again to compute the rest).
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+__all__ = ["main"]
+
+
+def _check(sweep, points) -> None:
+    from bem.case import problem_from_config
+
+    from .kernels import kernel_key
+
+    keys = {}
+    for p in points:
+        try:
+            problem, _ = problem_from_config(p.config)
+            keys.setdefault(kernel_key(p.config, problem), []).append(p.index)
+        except ValueError as exc:
+            print(f"  point {p.index} {p.values}: {exc}")
+    axes = ", ".join(f"{a.key} ({len(a.values)})" for a in sweep.axes)
+    print(f"sweep {sweep.name}: {len(points)} points over {axes}, combined as {sweep.combine}; "
+          f"{len(keys)} kernel set(s)")
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(prog="sweep", description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("file", type=Path, help="the sweep file (TOML; see docs/sweeps.md)")
+    parser.add_argument("--out", type=Path, help="output folder (default out/sweeps/NAME)")
+    parser.add_argument("--scheduler", metavar="ADDRESS",
+                        help="an existing Dask scheduler (tcp://host:8786, or its scheduler file *.json); "
+                             "default: a local cluster")
+    parser.add_argument("--workers", type=int, metavar="N",
+                        help="workers of the local cluster (default: the machine's cores)")
+    parser.add_argument("--cache", type=Path, help="kernel cache folder (default out/sweeps/kernel-cache)")
+    parser.add_argument("--no-cache", action="store_true", help="neither read nor write cached kernels")
+    parser.add_argument("--retry-failed", action="store_true", help="compute again points that failed before")
+    parser.add_argument("--no-plots", action="store_true", help="no PNG plots")
+    parser.add_argument("--check", action="store_true",
+                        help="check the sweep file and every point, count the kernel sets, run nothing")
+    parser.add_argument("--quiet", action="store_true", help="no progress bar")
+    args = parser.parse_args(argv)
+    if args.workers is not None and args.workers < 1:
+        parser.error(f"--workers must be >= 1, got {args.workers}")
+
+    from .engine import run_sweep
+    from .report import write_report
+    from .spec import SweepError, expand, read_sweep
+
+    try:
+        sweep = read_sweep(args.file)
+        points = expand(sweep)
+    except SweepError as exc:
+        print(f"sweep: error: {exc}", file=sys.stderr)
+        return 2
+    if args.check:
+        _check(sweep, points)
+        return 0
+    out = args.out or Path("out") / "sweeps" / sweep.name
+    cache = None if args.no_cache else (args.cache or Path("out") / "sweeps" / "kernel-cache")
+    try:
+        report = run_sweep(sweep, out, scheduler=args.scheduler, workers=args.workers, cache=cache,
+                           retry_failed=args.retry_failed, stream=None if args.quiet else sys.stderr)
+    except SweepError as exc:
+        print(f"sweep: error: {exc}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        return 130
+    written = write_report(sweep, report.rows, out, plots=not args.no_plots)
+    for f in written["fits"]:
+        if "error" in f:
+            print(f"sweep: fit {f['law']} of {f['y']} failed: {f['error']}", file=sys.stderr)
+    if not args.quiet:
+        for p in written["plots"]:
+            print(f"wrote {p}", file=sys.stderr)
+    return 1 if report.failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

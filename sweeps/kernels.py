@@ -1,0 +1,184 @@
+"""Kernel reuse: points grouped by what the compliance depends on, and the on-disk cache.
+
+The influence kernels (:func:`bem.problem.compute_kernels`) depend only on the layer
+(thickness, density), the material, the speed and the grid's spacing, period and
+truncation; the load, the friction and the indenter do not enter (the paper's
+conclusion). A kernel table holds the influence of every node offset
+``K[dy + K_y - 1, dx + K_x - 1]``, so the table of a larger region contains the table of
+a smaller one as its central block: one kernel set, formed for the widest region of a
+group, serves every point of the group (an automatically sized region grows with the
+load). The cache stores one ``.npz`` per group key.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+import tempfile
+from dataclasses import dataclass, replace
+from pathlib import Path
+
+import numpy as np
+
+from bem.grid import Grid
+from bem.problem import Problem, compute_kernels
+from bem.spectral import BLOCKS
+
+__all__ = ["kernel_key", "KernelGroup", "group_points", "fit_kernels", "form_kernels", "KernelCache", "PointCache"]
+
+#: the blocks a frictionless solve needs; a frictional one needs all nine (:data:`bem.spectral.BLOCKS`)
+NORMAL_BLOCKS = ("ww",)
+
+
+def _file_digest(path: str) -> str:
+    return hashlib.sha256(Path(path).read_bytes()).hexdigest()
+
+
+def kernel_key(config: dict, problem: Problem) -> str:
+    """A hash of what the compliance depends on: ``[layer]``, ``[material]`` (a master-curve
+    table by its content), the speed and the grid's spacing, period and truncation."""
+    g = problem.grid
+    material = dict(config["material"])
+    if "file" in material:
+        material["file"] = _file_digest(material["file"])
+    what = {
+        "layer": [problem.layer.thickness, problem.layer.density],
+        "material": material,
+        "speed": problem.loading.speed,
+        "grid": [g.spacing_x, g.spacing_y, g.period_x, g.period_y, g.truncation_x, g.truncation_y],
+    }
+    return hashlib.sha256(json.dumps(what, sort_keys=True).encode()).hexdigest()[:16]
+
+
+@dataclass(frozen=True)
+class KernelGroup:
+    """Points sharing one compliance: the problem to form it for (the group's widest
+    region), the blocks they need, and the point indices."""
+
+    key: str
+    problem: Problem
+    blocks: tuple
+    members: tuple
+
+    @property
+    def nodes(self) -> tuple[int, int]:
+        return self.problem.grid.nodes_x, self.problem.grid.nodes_y
+
+
+def group_points(problems: dict, frictional: dict, keys: dict) -> dict:
+    """Groups of points by kernel key.
+
+    Parameters
+    ----------
+    problems : dict of int -> Problem
+    frictional : dict of int -> bool
+        Whether the point needs the nine blocks.
+    keys : dict of int -> str
+        :func:`kernel_key` of each point.
+    """
+    out = {}
+    for key in dict.fromkeys(keys.values()):
+        members = tuple(i for i in problems if keys[i] == key)
+        first = problems[members[0]]
+        nx = max(problems[i].grid.nodes_x for i in members)
+        ny = max(problems[i].grid.nodes_y for i in members)
+        grid = replace(first.grid, nodes_x=nx, nodes_y=ny)
+        blocks = tuple(BLOCKS) if any(frictional[i] for i in members) else NORMAL_BLOCKS
+        out[key] = KernelGroup(key, replace(first, grid=grid), blocks, members)
+    return out
+
+
+def fit_kernels(kernels: dict, grid: Grid) -> dict:
+    """The central block of each table for ``grid``'s node counts (the tables of a region at
+    least as wide, same spacing, period and truncation).
+
+    Raises
+    ------
+    ValueError
+        A table smaller than the grid needs.
+    """
+    ky, kx = grid.nodes_y, grid.nodes_x
+    out = {}
+    for name, table in kernels.items():
+        cy, cx = (table.shape[0] + 1) // 2, (table.shape[1] + 1) // 2  # the table's node counts
+        if cy < ky or cx < kx:
+            raise ValueError(f"kernel table {name!r} of {cx} x {cy} nodes cannot serve a grid of {kx} x {ky}")
+        out[name] = table[cy - ky: cy + ky - 1, cx - kx: cx + kx - 1]
+    return out
+
+
+def form_kernels(problem: Problem, blocks: tuple) -> tuple[dict, float]:
+    """Form the kernel tables (a Dask task): :func:`bem.problem.compute_kernels`; returns
+    them and the seconds taken."""
+    return compute_kernels(problem, blocks)
+
+
+class KernelCache:
+    """Kernel sets on disk, one ``<key>.npz`` per group under ``folder``.
+
+    A cached set serves a request when it holds the blocks and at least the node counts
+    asked for. Writes go through a temporary file and a rename, so an interrupted run
+    never leaves a truncated entry.
+    """
+
+    def __init__(self, folder: str | Path):
+        self.folder = Path(folder)
+        self.folder.mkdir(parents=True, exist_ok=True)
+
+    def path(self, key: str) -> Path:
+        return self.folder / f"{key}.npz"
+
+    def load(self, group: KernelGroup) -> dict | None:
+        """The cached tables of ``group``, or ``None`` when absent or too small."""
+        path = self.path(group.key)
+        if not path.exists():
+            return None
+        try:
+            with np.load(path) as data:
+                if not set(group.blocks) <= set(data.files):
+                    return None
+                tables = {b: data[b] for b in group.blocks}
+        except (OSError, ValueError, KeyError):
+            return None
+        try:
+            return fit_kernels(tables, group.problem.grid)
+        except ValueError:
+            return None
+
+    def save(self, key: str, kernels: dict) -> None:
+        fd, tmp = tempfile.mkstemp(dir=self.folder, suffix=".npz.tmp")
+        os.close(fd)
+        try:
+            with open(tmp, "wb") as fh:
+                np.savez(fh, **kernels)
+            os.replace(tmp, self.path(key))
+        finally:
+            if os.path.exists(tmp):
+                os.unlink(tmp)
+
+    def __len__(self) -> int:
+        return len(list(self.folder.glob("*.npz")))
+
+
+class PointCache:
+    """Finished points on disk, one ``<point_id>.json`` (the row's results) under
+    ``folder``: a point of another sweep with the same checked case is not solved again
+    (figures 8 and 9, tables 2 and 3 share points)."""
+
+    def __init__(self, folder: str | Path):
+        self.folder = Path(folder)
+        self.folder.mkdir(parents=True, exist_ok=True)
+
+    def load(self, point_id: str) -> dict | None:
+        try:
+            return json.loads((self.folder / f"{point_id}.json").read_text())
+        except (OSError, ValueError):
+            return None
+
+    def save(self, point_id: str, row: dict) -> None:
+        fd, tmp = tempfile.mkstemp(dir=self.folder, suffix=".json.tmp")
+        with os.fdopen(fd, "w") as fh:
+            json.dump(row, fh)
+        os.replace(tmp, self.folder / f"{point_id}.json")
+

@@ -1,0 +1,74 @@
+"""One point of a sweep, solved with its group's kernels (a Dask task).
+
+The point's case is turned into a problem by :func:`bem.case.problem_from_config`; the
+group's kernel set is cut to the point's grid (:func:`sweeps.kernels.fit_kernels`) and
+handed to :func:`bem.problem.solve_frictionless` or :func:`bem.rolling.solve_friction`,
+so no kernel is formed again. A frictionless rolling point also gets the energy figure
+``P_visc / V`` (:func:`bem.energy.viscous_dissipation`), which a frictional solve
+reports itself. Any error becomes a ``failed`` row with its message: one bad point never
+stops the others.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+
+import numpy as np
+
+from bem.case import friction_from_config, problem_from_config
+from bem.energy import viscous_dissipation
+from bem.problem import solve_frictionless
+from bem.rolling import solve_friction
+
+from .kernels import fit_kernels
+from .table import RESULTS
+
+__all__ = ["solve_point", "scalars"]
+
+
+def scalars(summary: dict) -> dict:
+    """The result columns of a ``summary()`` (nested entries are left out)."""
+    return {k: summary[k] for k in RESULTS if k in summary and not isinstance(summary[k], (dict, list))}
+
+
+def solve_point(index: int, config: dict, kernels: dict | None) -> dict:
+    """Solve one point; returns its table row (without the axis values).
+
+    Parameters
+    ----------
+    index : int
+        The point's position in the sweep.
+    config : dict
+        Its checked case (``casefile.validate(..., "bem")``).
+    kernels : dict or None
+        The group's kernel tables (a region at least as wide as the point's); ``None``
+        forms them here.
+    """
+    t0 = time.perf_counter()
+    row = {"index": index}
+    try:
+        problem, auto = problem_from_config(config)
+        friction = friction_from_config(config)
+        own = None if kernels is None else fit_kernels(kernels, problem.grid)
+        if friction is None:
+            result, timings = solve_frictionless(problem, grow=auto, kernels=own)
+            V = problem.loading.speed
+            t1 = time.perf_counter()
+            energy = math.nan
+            if V > 0:
+                zero = np.zeros(result.grid.shape)
+                energy = viscous_dissipation(result.grid, problem.layer, V, -result.force, zero, zero) / V
+            timings["energy_s"] = time.perf_counter() - t1
+            values = {**scalars(result.summary()), "rolling_resistance_energy": energy, "speed": V}
+        else:
+            result, timings = solve_friction(problem, friction, kernels=own)
+            values = scalars(result.summary())
+            values["friction_share"] = result.rolling_resistance_friction / result.rolling_resistance_energy
+        row.update(values)
+        row.update(status="ok", error="", nodes_x=result.grid.nodes_x, nodes_y=result.grid.nodes_y,
+                   iterations=result.record.iterations, **timings)
+    except Exception as exc:  # recorded, never raised: the sweep goes on
+        row.update(status="failed", error=f"{type(exc).__name__}: {exc}".replace("\n", " "))
+    row["seconds"] = time.perf_counter() - t0
+    return row
