@@ -12,9 +12,10 @@ import numpy as np
 import casefile
 
 from .grid import Grid
-from .indenters import Cylinder, HeightMap, Paraboloid, Sphere
+from .indenters import Cylinder, HeightMap, LineCylinder, Paraboloid, Sphere
 from .layer import Layer
 from .materials import material_from_config
+from .plane import LineGrid
 from .problem import Loading, Problem, auto_half_width
 
 __all__ = ["read_case", "problem_from_config", "friction_from_config"]
@@ -63,17 +64,57 @@ def _indenter(sec: dict):
         return _height_map(sec["file"])
     if shape == "cylinder":
         return Cylinder(sec["radius"], sec["length"])
+    if shape == "line":
+        return LineCylinder(sec["radius"])
     return {"sphere": Sphere, "paraboloid": Paraboloid}[shape](sec["radius"])
+
+
+_GRID_KEYS = ("spacing", "period", "truncation", "half_width")
+
+
+def _line_grid(g: dict, layer: Layer, indenter: LineCylinder, loading: Loading) -> tuple[LineGrid, bool]:
+    """The one-row grid of a line case from ``[grid]``: ``spacing``, ``period``,
+    ``truncation``, ``half_width`` (or their ``_x`` forms); a ``_y`` key is an error."""
+    ys = sorted(k for k in g if k.endswith("_y"))
+    if ys:
+        raise casefile.CaseFileError(
+            f"[grid] {', '.join(ys)}: a line case ([indenter] shape = \"line\", plane strain) has a grid of "
+            "one row along x and no y keys; remove them (give spacing, period, truncation and half_width, "
+            "or their _x forms)"
+        )
+    vals = {}
+    for name in _GRID_KEYS:
+        if name in g and f"{name}_x" in g:
+            raise casefile.CaseFileError(f"[grid] gives both {name} and {name}_x; keep one")
+        vals[name] = g.get(name, g.get(f"{name}_x"))
+    missing = [n for n in _GRID_KEYS[:3] if vals[n] is None]
+    if missing:
+        raise casefile.CaseFileError(f"[grid] needs {', '.join(missing)} (or the _x form) for a line case")
+    auto = vals["half_width"] is None
+    hw = auto_half_width(layer, indenter, loading, vals["spacing"]) if auto else vals["half_width"]
+    return LineGrid.centred(vals["spacing"], vals["period"], vals["truncation"], hw), auto
 
 
 def problem_from_config(config: dict) -> tuple[Problem, bool]:
     """The problem of a case (a dict of sections, checked here by :func:`casefile.validate`
-    if it was not already); the flag tells whether the region was sized automatically."""
+    if it was not already); the flag tells whether the region was sized automatically.
+
+    A line case (``[indenter] shape = "line"``: plane strain, load per unit length in N/m)
+    gets a :class:`bem.plane.LineGrid`; ``_y`` grid keys and a ``[friction]`` section are
+    errors there."""
     config = casefile.validate(config, "bem")
     lay, ld, g = config["layer"], config["loading"], config["grid"]
     layer = Layer(lay["thickness"], material_from_config(config["material"], Path(".")), lay.get("density", 0.0))
     indenter = _indenter(config["indenter"])
     loading = Loading(ld.get("speed", 0.0), ld.get("load"), ld.get("indentation"))
+    if isinstance(indenter, LineCylinder):
+        if "friction" in config:
+            raise casefile.CaseFileError(
+                "[friction] is not available for a line case ([indenter] shape = \"line\", plane strain): "
+                "frictional rolling is 3D only; remove the [friction] section or use a 3D indenter"
+            )
+        grid, auto = _line_grid(g, layer, indenter, loading)
+        return Problem(layer, indenter, grid, loading), auto
     spacing = _pair(g, "spacing")
     auto = not {"half_width", "half_width_x", "half_width_y"} & set(g)
     hw_default = auto_half_width(layer, indenter, loading, max(spacing)) if auto else g.get("half_width")

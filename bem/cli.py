@@ -14,6 +14,7 @@ import casefile
 
 from .case import friction_from_config, problem_from_config, read_case
 from .contact import ContactError
+from .plane import LineContact
 from .problem import solve_frictionless
 
 
@@ -48,10 +49,13 @@ def _write_outputs(args, friction, result, summary) -> list[str]:
         except OSError as exc:
             failed.append(f"--fields {args.fields} was not written: {exc}")
     if args.plot:
-        from .plots import plot_frictional_contact, plot_normal_contact
+        from .plots import plot_frictional_contact, plot_line_contact, plot_normal_contact
 
+        plot = plot_normal_contact if friction is None else plot_frictional_contact
+        if isinstance(result, LineContact):
+            plot = plot_line_contact
         try:
-            (plot_normal_contact if friction is None else plot_frictional_contact)(result, args.plot)
+            plot(result, args.plot)
         except (OSError, ValueError) as exc:
             failed.append(f"--plot {args.plot} was not written: {exc}")
     return failed
@@ -103,6 +107,17 @@ def main(argv: list[str] | None = None) -> int:
     summary = _strict({**result.summary(), "speed": problem.loading.speed, "timings_s": timings})
     if args.json:
         print(json.dumps(summary, indent=2, allow_nan=False))
+    elif isinstance(result, LineContact):
+        print("plane strain (line contact), per unit length along the cylinder's axis")
+        print(f"rolling resistance  {result.rolling_resistance:.6g} N/m")
+        if problem.loading.speed > 0:
+            print(f"energy figure       {result.rolling_resistance_energy:.6g} N/m (P_visc / V)")
+        print(f"indentation         {result.indentation:.6g} m")
+        print(f"half-width          {result.half_width:.6g} m ((leading - trailing edge) / 2)")
+        print(f"trailing edge       {result.trailing_edge:.6g} m")
+        print(f"leading edge        {result.leading_edge:.6g} m")
+        print(f"load                {result.load:.6g} N/m")
+        print(f"peak pressure       {result.peak_pressure:.6g} Pa")
     else:
         print(f"rolling resistance  {result.rolling_resistance:.6g} N")
         print(f"indentation         {result.indentation:.6g} m")

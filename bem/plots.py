@@ -11,7 +11,7 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["plot_normal_contact", "plot_frictional_contact"]
+__all__ = ["plot_normal_contact", "plot_frictional_contact", "plot_line_contact"]
 
 
 def _save(fig, path, dpi: int) -> Path:
@@ -113,3 +113,30 @@ def plot_frictional_contact(result, path: str | Path, title: str = "", max_arrow
         f"Q = {result.driving_force:.4g} N, T = {result.driving_torque:.4g} N m"
     ))
     return _save(fig, path, 110)
+
+
+def plot_line_contact(result, path: str | Path, title: str = "") -> Path:
+    """Pressure and surface deflection along ``x`` of a plane-strain line contact
+    (:class:`bem.plane.LineContact`), one above the other, with the contact edges; returns
+    the path."""
+    from matplotlib.figure import Figure
+
+    x_mm = result.grid.x * 1e3
+    fig = Figure(figsize=(8, 6), layout="constrained")
+    ax0, ax1 = fig.subplots(2, 1, sharex=True)
+    ax0.plot(x_mm, result.pressure[0] / 1e6, "o-", ms=2)
+    ax0.set_ylabel("pressure (MPa)")
+    ax1.plot(x_mm, -result.deflection[0] * 1e6, "-", label="surface")
+    ax1.plot(x_mm, (result.gap[0] - result.deflection[0]) * 1e6, "--", label="cylinder")  # s - d = h - u
+    ax1.set_ylabel("height (um)")
+    ax1.set_xlabel("x (mm), direction of motion ->")
+    ax1.legend()
+    for ax in (ax0, ax1):
+        for edge in (result.trailing_edge, result.leading_edge):
+            ax.axvline(edge * 1e3, color="0.6", lw=0.8)
+        ax.grid(alpha=0.3)
+    fig.suptitle(title or (
+        f"plane strain: P = {result.load:.4g} N/m, b = {result.half_width * 1e3:.4g} mm, "
+        f"R_r = {result.rolling_resistance:.5g} N/m"
+    ))
+    return _save(fig, path, 120)
