@@ -62,7 +62,7 @@ def load_case(path: Path, known: dict | None = None) -> dict:
     except OSError as exc:
         raise CaseError(f"{path}: cannot read: {exc}") from None
     kind_name = case.get("kind")
-    if kind_name not in KINDS:
+    if not isinstance(kind_name, str) or kind_name not in KINDS:
         raise CaseError(f"{path} kind: unknown kind {kind_name!r}; known: {', '.join(KINDS)}{close(kind_name, KINDS)}")
     kind = KINDS[kind_name]
     fields = {**HEADER, **{s: None for s in kind.SECTIONS}}
