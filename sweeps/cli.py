@@ -41,6 +41,8 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--scheduler", metavar="ADDRESS",
                         help="an existing Dask scheduler (tcp://host:8786, or its scheduler file *.json); "
                              "default: a local cluster")
+    parser.add_argument("--timeout", type=float, default=10.0, metavar="SECONDS",
+                        help="how long to wait for --scheduler to answer (default 10)")
     parser.add_argument("--workers", type=int, metavar="N",
                         help="workers of the local cluster (default: the machine's cores)")
     parser.add_argument("--cache", type=Path, help="kernel cache folder (default out/sweeps/kernel-cache)")
@@ -71,7 +73,7 @@ def main(argv: list[str] | None = None) -> int:
     cache = None if args.no_cache else (args.cache or Path("out") / "sweeps" / "kernel-cache")
     try:
         report = run_sweep(sweep, out, scheduler=args.scheduler, workers=args.workers, cache=cache,
-                           retry_failed=args.retry_failed, stream=None if args.quiet else sys.stderr)
+                           timeout=args.timeout, retry_failed=args.retry_failed, stream=None if args.quiet else sys.stderr)
     except SweepError as exc:
         print(f"sweep: error: {exc}", file=sys.stderr)
         return 2

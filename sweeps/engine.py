@@ -90,7 +90,7 @@ def connect(scheduler: str | None = None, workers: int | None = None, processes:
                              f"({type(exc).__name__}: {exc}); start one with `dask scheduler` and "
                              "`dask worker ADDRESS`, or leave out --scheduler to run on a local cluster") from None
     n = workers or os.cpu_count() or 1
-    cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=processes, dashboard_address=None,
+    cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=processes, dashboard_address=":0",
                            silence_logs=logging.ERROR)
     return Client(cluster)
 
@@ -108,6 +108,7 @@ def _prior(out: Path, header: list[str], points: list[Point], retry_failed: bool
 
 def run_sweep(sweep: Sweep, out: str | Path, *, scheduler: str | None = None, workers: int | None = None,
               cache: str | Path | None = None, processes: bool = True, retry_failed: bool = False,
+              timeout: float = 10.0,
               stream=sys.stderr, client=None) -> RunReport:
     """Run ``sweep``, writing ``results.csv`` and ``summary.json`` in ``out``.
 
@@ -118,8 +119,9 @@ def run_sweep(sweep: Sweep, out: str | Path, *, scheduler: str | None = None, wo
     out : path
         Output folder; a table already there from the same sweep is resumed.
     scheduler : str, optional
-        Address of a running Dask scheduler (or its scheduler file); default a local
-        cluster of ``workers`` processes (threads with ``processes=False``).
+        Address of a running Dask scheduler (or its scheduler file), waited for
+        ``timeout`` seconds; default a local cluster of ``workers`` processes (threads
+        with ``processes=False``).
     cache : path, optional
         Cache folder (``None``: no cache): ``kernels/`` holds kernel sets by group key,
         ``points/`` finished points by ``point_id`` (any sweep's).
@@ -153,7 +155,7 @@ def run_sweep(sweep: Sweep, out: str | Path, *, scheduler: str | None = None, wo
     own_client = client is None
     t_start = time.perf_counter()
     if todo and client is None:
-        client = connect(scheduler, workers, processes)
+        client = connect(scheduler, workers, processes, timeout)
     try:
         if client is not None:
             report.workers = len(client.scheduler_info().get("workers", {}))
@@ -233,6 +235,8 @@ def run_sweep(sweep: Sweep, out: str | Path, *, scheduler: str | None = None, wo
             raise
         finally:
             rows = table.finish()
+            if client is not None:  # workers may join a running cluster after the start
+                report.workers = max(report.workers, len(client.scheduler_info().get("workers", {})))
     finally:
         if own_client and client is not None:
             cluster = getattr(client, "cluster", None)
