@@ -101,9 +101,9 @@ def main(argv: list[str] | None = None) -> int:
             progress(f"[{i}/{len(cases)}] {case['name']}: {case['title']}")
             result = run_case(case, progress, quick=args.quick)
             failed = [g for g in result.gates if not g.passed]
-            n = len(result.gates)
+            n = sum(not g.report_only for g in result.gates)
             progress(f"  {case['name']}: {'PASS' if result.passed else 'FAIL'} ({n - len(failed)}/{n} gates, "
-                     f"{result.seconds:.1f} s)")
+                     f"{len(result.gates) - n} reported, {result.seconds:.1f} s)")
             for g in failed:
                 progress(f"    FAIL {g.method} {g.quantity} vs {g.against} ({g.level}): error {g.error:.3e} > "
                          f"{g.tolerance:.1e}: {g.reason}")
