@@ -2,13 +2,15 @@
 speed-up from one to two workers.
 
     ../.venv/bin/python sweeps_paper.py all [--workers 2]      # every figure and table, fresh cache
-    ../.venv/bin/python sweeps_paper.py speedup FILE [--points N]
+    ../.venv/bin/python sweeps_paper.py compare                # the paper's findings against them
+    ../.venv/bin/python sweeps_paper.py speedup FILE
 
 ``all`` runs examples/sweeps/fig7a ... fig10b and the two tables in one fresh cache
 folder (the tables' and figure 9's points shared with figures 7 and 8 come from the
 cache) and prints, per sweep and in total: wall time, points computed, kernel sets formed,
 and the worker time in kernels, solves (with the energy figure) and overhead.
-``speedup`` runs one sweep file without a cache on one worker, then on two, and prints
+``compare`` prints the paper's findings against those tables (Tables 2-3, the friction
+share, the peaks of figures 9 and 10). ``speedup`` runs one sweep file without a cache on one worker, then on two, and prints
 the ratio of wall times. Outputs under ../out/bench-sweeps/.
 """
 
@@ -106,6 +108,68 @@ def speedup(file: str) -> None:
     print(f"speed-up 1 -> 2 workers: {walls[1] / walls[2]:.2f} ({walls[1]:.1f} s -> {walls[2]:.1f} s)")
 
 
+def compare() -> None:
+    """The paper's findings against the tables that ``all`` wrote."""
+    import numpy as np
+
+    from sweeps import fit_law
+    from sweeps.paper import (FRICTION_SHARE_LIMIT, SHARE_PEAK_RANGE, TABLE2, TABLE3, curve, friction_share_max,
+                              law_gap, paper_fit, peak_position, read_table)
+
+    def rows(name):
+        return read_table(OUT / name / "results.csv")
+
+    print("Table 2 (R_r = a P^b, with friction), ours against the paper's midpoints, P = 10-150 N:")
+    for H, name in ((5e-3, "fig7a-load-H5"), (30e-3, "fig7b-load-H30")):
+        r = rows(name)
+        for y in ("rolling_resistance", "rolling_resistance_energy"):
+            P, R = curve(r, "loading.load", y, case="base-friction")
+            f = fit_law("power", P, R)
+            gap = law_gap(f, paper_fit(TABLE2, H, (10, 150)), 10, 150)
+            print(f"  H = {H * 1e3:g} mm {y:27s} a = {f.values[0]:.4e} [{f.lower[0]:.4e}, {f.upper[0]:.4e}]  "
+                  f"b = {f.values[1]:.4f} [{f.lower[1]:.4f}, {f.upper[1]:.4f}]  r2 = {f.r2:.6f}  "
+                  f"largest gap to the paper's law {100 * gap:.2f} %")
+    print("Table 3 (R_r = a exp(b H) + c exp(d H), with friction), H = 1-30 mm:")
+    for P, name in ((50.0, "fig8a-thickness-P50"), (125.0, "fig8b-thickness-P125")):
+        r = rows(name)
+        for y in ("rolling_resistance", "rolling_resistance_energy"):
+            H, R = curve(r, "layer.thickness", y, case="base-friction")
+            f = fit_law("two_exponential", H, R)
+            text = "  ".join(f"{n} = {v:.4g} [{lo:.4g}, {hi:.4g}]" for n, v, lo, hi in
+                             zip(f.names, f.values, f.lower, f.upper))
+            for lo in (1e-3, 2e-3):
+                gap = law_gap(f, paper_fit(TABLE3, P, (lo, 30e-3)), lo, 30e-3)
+                text += f"  gap {lo * 1e3:g}-30 mm {100 * gap:.2f} %"
+            print(f"  P = {P:g} N {y:27s} {text}  r2 = {f.r2:.6f}")
+    print("Friction against no friction at the same point (figures 7, 8):")
+    for name, x in (("fig7a-load-H5", "loading.load"), ("fig7b-load-H30", "loading.load"),
+                    ("fig8a-thickness-P50", "layer.thickness"), ("fig8b-thickness-P125", "layer.thickness")):
+        r = rows(name)
+        for y in ("rolling_resistance", "rolling_resistance_energy"):
+            _, a = curve(r, x, y, case="base-friction")
+            _, b = curve(r, x, y, case="base-frictionless")
+            print(f"  {name:22s} {y:27s} R_r(friction) / R_r(none) - 1: min {100 * (a / b - 1).min():+.2f} %, "
+                  f"max {100 * (a / b - 1).max():+.2f} %")
+    share = max(friction_share_max(rows(n)) for n in ("fig7a-load-H5", "fig7b-load-H30"))
+    print(f"Friction share, figures 7 (P <= 150 N): largest {100 * share:.2f} % (paper: below "
+          f"{100 * FRICTION_SHARE_LIMIT:.2f} %)")
+    for name in ("fig9a-friction-share-P50", "fig9b-friction-share-P125"):
+        H, s = curve(rows(name), "layer.thickness", "friction_share")
+        k = int(np.argmax(s))
+        print(f"  {name}: share {100 * s.min():.2f}-{100 * s.max():.2f} %, largest at H = {H[k] * 1e3:g} mm, "
+              f"parabola vertex {peak_position(H, s) * 1e3:.2f} mm (paper: {SHARE_PEAK_RANGE[0] * 1e3:g}-"
+              f"{SHARE_PEAK_RANGE[1] * 1e3:g} mm)")
+    print("Figure 10, speed of the rolling-resistance peak:")
+    for name in ("fig10a-speed-H1", "fig10b-speed-H30"):
+        r = rows(name)
+        for P in (10.0, 50.0, 100.0, 150.0):
+            out = []
+            for y in ("rolling_resistance", "rolling_resistance_energy"):
+                V, R = curve(r, "loading.speed", y, **{"loading.load": P})
+                out.append(f"{y.split('_')[-1]} {peak_position(V, R, log=True):.4g} m/s (R_r max {R.max():.4g} N)")
+            print(f"  {name} P = {P:g} N: " + "; ".join(out))
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = ap.add_subparsers(dest="what", required=True)
@@ -113,10 +177,13 @@ def main() -> None:
     a.add_argument("--workers", type=int, default=2)
     s = sub.add_parser("speedup")
     s.add_argument("file")
+    sub.add_parser("compare")
     args = ap.parse_args()
     OUT.mkdir(parents=True, exist_ok=True)
     if args.what == "all":
         run_all(args.workers)
+    elif args.what == "compare":
+        compare()
     else:
         speedup(args.file)
 

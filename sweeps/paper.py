@@ -7,7 +7,12 @@ sweep's table (Zehil and Gavin 2013).
   two laws over a range.
 * Section 11.6: the friction share below 1.55 % up to ``P = 150 N``
   (:func:`friction_share_max`); its maximum for ``H`` between 6 and 8 mm (fig. 9,
-  :func:`peak_position` on the thickness).
+  :func:`peak_position` on the thickness). The paper's "contribution of friction" can be
+  read two ways, and both are here: the part of the dissipated power lost by slip
+  (the table's ``friction_share``, the reading of section 11.2's "less than 0.05 N
+  originate from slipping friction"), or how much friction raises ``R_r`` over the
+  frictionless solution at the same point (:func:`friction_effect`, the reading of the
+  with/without curves of figures 7 and 8).
 * Section 11.7: the speed of the rolling-resistance peak (fig. 10, :func:`peak_position`
   on ``log V``).
 
@@ -27,7 +32,7 @@ from .report import curves
 from .table import as_float
 
 __all__ = ["TABLE2", "TABLE3", "FRICTION_SHARE_LIMIT", "SHARE_PEAK_RANGE", "read_table", "paper_fit", "law_gap",
-           "friction_share_max", "peak_position", "curve"]
+           "friction_share_max", "friction_effect", "peak_position", "curve"]
 
 #: Table 2, R_r = a P^b (P in N, R_r in N), with friction; key: H (m)
 TABLE2 = {
@@ -77,6 +82,17 @@ def friction_share_max(rows: list[dict], load_max: float = 150.0, load_key: str 
               if r.get("status") == "ok" and as_float(r.get(load_key, r.get("load"))) <= load_max * (1 + 1e-12)]
     shares = [s for s in shares if math.isfinite(s)]
     return max(shares) if shares else math.nan
+
+
+def friction_effect(rows: list[dict], x: str, y: str = "rolling_resistance", with_case: str = "base-friction",
+                    without_case: str = "base-frictionless") -> tuple[np.ndarray, np.ndarray]:
+    """``(xs, R_f / R_0 - 1)``: how much friction raises result ``y`` at each ``x``, from a
+    sweep whose ``case`` axis holds a frictional and a frictionless base case (figures 7
+    and 8); only the ``x`` values both curves have."""
+    xf, rf = curve(rows, x, y, case=with_case)
+    x0, r0 = curve(rows, x, y, case=without_case)
+    common, i, j = np.intersect1d(xf, x0, return_indices=True)
+    return common, rf[i] / r0[j] - 1
 
 
 def peak_position(x, y, log: bool = False, window: int = 5) -> float:

@@ -7,7 +7,7 @@ import pytest
 from scipy import stats
 
 from sweeps import fit_power, fit_two_exponential
-from sweeps.paper import TABLE2, TABLE3, friction_share_max, law_gap, paper_fit, peak_position
+from sweeps.paper import TABLE2, TABLE3, friction_effect, friction_share_max, law_gap, paper_fit, peak_position
 
 
 def test_power_law_recovers_exact_data():
@@ -74,3 +74,13 @@ def test_friction_share_max():
             {"status": "failed", "loading.load": "50", "friction_share": ""},
             {"status": "ok", "loading.load": "50", "friction_share": ""}]
     assert friction_share_max(rows) == 0.012
+
+
+def test_friction_effect_pairs_the_two_cases():
+    rows = [{"status": "ok", "case": c, "layer.thickness": h, "rolling_resistance": str(v)}
+            for c, h, v in [("base-friction", "0.005", 1.02), ("base-frictionless", "0.005", 1.0),
+                            ("base-friction", "0.01", 2.2), ("base-frictionless", "0.01", 2.0),
+                            ("base-friction", "0.02", 3.0)]]
+    x, effect = friction_effect(rows, "layer.thickness")
+    np.testing.assert_allclose(x, [0.005, 0.01])
+    np.testing.assert_allclose(effect, [0.02, 0.1], rtol=1e-12)
