@@ -5,6 +5,12 @@ Layer compliance in Fourier space (:mod:`bem.layer`), influence kernels as the p
 truncated Fourier sums (:mod:`bem.spectral`), the nodal compliance operator
 (:mod:`bem.operator`), indenters, and the frictionless contact solver with its rolling
 resistance (:mod:`bem.contact`, :mod:`bem.problem`). SI units throughout.
+
+Entry points: :func:`solve_frictionless` (frictionless contact of a :class:`Problem`, at
+rest or rolling) and :func:`solve_friction` (steady rolling or sliding with Coulomb
+friction, :class:`Friction`; the solver is the package :mod:`bem.frictional`); on
+prepared operators, :func:`solve_normal` and :func:`bem.frictional.solve_rolling`. Both
+solvers' linear solves go through :class:`bem.linear.LinearSolver`.
 """
 
 from .contact import ContactAtEdge, ContactError, ContactNotConverged, NormalContact, solve_normal
@@ -16,7 +22,7 @@ from .operator import ComplianceOperator
 from .problem import Loading, Problem, solve_frictionless
 from .spectral import influence_kernels, influence_kernels_direct
 from .friction import Friction, FrictionalContact, FrictionNotConverged, LoadingUnreachable
-from .rolling import solve_friction
+from .frictional import solve_friction
 from .energy import viscous_dissipation
 
 __all__ = [

@@ -28,14 +28,15 @@ from typing import Callable
 
 import numpy as np
 from scipy.ndimage import binary_dilation
-from scipy.sparse.linalg import LinearOperator, gmres
 
 from .grid import Grid
+from .linear import LinearSolver
 from .operator import ComplianceOperator
 
 __all__ = [
     "ContactError", "ContactNotConverged", "ContactAtEdge", "SolveRecord", "NormalContact",
-    "solve_normal", "grid_summary", "pressure_centroid_x", "SHARED_SCALARS",
+    "solve_normal", "grid_summary", "pressure_centroid_x", "SHARED_SCALARS", "NormalSystem", "coarse_grid",
+    "edge_nodes",
 ]
 
 
@@ -161,7 +162,9 @@ def grid_summary(grid: Grid) -> dict:
     }
 
 
-def _edge_nodes(shape: tuple[int, int]) -> np.ndarray:
+def edge_nodes(shape: tuple[int, int]) -> np.ndarray:
+    """Flat mask of the nodes on the border of a grid of ``shape`` (where a contact that
+    reaches them raises :class:`ContactAtEdge`)."""
     edge = np.zeros(shape, dtype=bool)
     edge[:, 0] = edge[:, -1] = True
     if shape[0] > 1:  # a single row is a line contact (plane strain): its two ends only
@@ -169,64 +172,57 @@ def _edge_nodes(shape: tuple[int, int]) -> np.ndarray:
     return edge.ravel()
 
 
-class _LinearSolver:
-    """Solve the load- or displacement-controlled problem on a node subset."""
+class NormalSystem:
+    """The linear problem of one trial contact set ``idx`` (flat node indices): under
+    load control the bordered system ``C_AA F_A - d 1 = -s_A``, ``diag sum F_A = diag P``
+    (both rows in metres), under displacement control ``C_AA F_A = d - s_A``; for
+    :class:`bem.linear.LinearSolver` (dense matrix, FFT product, and the exact inverse of
+    the operator's circulant embedding on the force part as preconditioner)."""
 
-    def __init__(self, op: ComplianceOperator, dense_limit: int, rtol: float):
-        self.op, self.dense_limit, self.rtol = op, dense_limit, rtol
-        self.iterations = 0
-        self.used_gmres = False
+    def __init__(self, op: ComplianceOperator, idx: np.ndarray, s_A: np.ndarray, load: float | None,
+                 indentation: float | None):
+        self.op, self.idx, self.load, self.indentation = op, idx, load, indentation
+        self.m = idx.size
+        self.bordered = load is not None
+        self.n = self.m + self.bordered
+        self.diag = float(op.kernel[op.grid.nodes_y - 1, op.grid.nodes_x - 1])
+        self.b = np.concatenate([-s_A, [self.diag * load]]) if self.bordered else indentation - s_A
+        self._full = np.zeros(op.grid.nodes_x * op.grid.nodes_y)
+        if not op.has_circulant_inverse:
+            self.precondition = None
 
-    def __call__(self, idx, s_A, load, indentation, guess):
-        n = idx.size
-        diag = float(self.op.kernel[self.op.grid.nodes_y - 1, self.op.grid.nodes_x - 1])
-        if n <= self.dense_limit:
-            K = self.op.dense(idx)
-            if load is None:
-                return np.linalg.solve(K, indentation - s_A), indentation
-            M = np.zeros((n + 1, n + 1))
-            M[:n, :n] = K
-            M[:n, n] = -1.0
-            M[n, :n] = diag  # scaled so that both rows are in metres
-            x = np.linalg.solve(M, np.concatenate([-s_A, [diag * load]]))
-            return x[:n], x[n]
-        self.used_gmres = True
-        shape, size = self.op.grid.shape, self.op.grid.nodes_x * self.op.grid.nodes_y
-        full = np.zeros(size)
-        bordered = load is not None
+    def dense(self) -> np.ndarray:
+        K = self.op.dense(self.idx)
+        if not self.bordered:
+            return K
+        m = self.m
+        M = np.zeros((m + 1, m + 1))
+        M[:m, :m] = K
+        M[:m, m] = -1.0
+        M[m, :m] = self.diag
+        return M
 
-        def matvec(v):
-            full[:] = 0.0
-            full[idx] = v[:n]
-            out = self.op.apply(full.reshape(shape)).ravel()[idx]
-            if not bordered:
-                return out
-            return np.concatenate([out - v[n], [diag * v[:n].sum()]])
+    def _spread(self, v):
+        self._full[:] = 0.0
+        self._full[self.idx] = v[:self.m]
+        return self._full.reshape(self.op.grid.shape)
 
-        def precondition(v):  # the circulant embedding's inverse on the force part
-            full[:] = 0.0
-            full[idx] = v[:n]
-            out = self.op.circulant_inverse(full.reshape(shape)).ravel()[idx]
-            return np.concatenate([out, v[n:]])
+    def matvec(self, v):
+        out = self.op.apply(self._spread(v)).ravel()[self.idx]
+        if not self.bordered:
+            return out
+        return np.concatenate([out - v[self.m], [self.diag * v[:self.m].sum()]])
 
-        dim = n + 1 if bordered else n
-        A = LinearOperator((dim, dim), matvec=matvec, dtype=float)
-        M = LinearOperator((dim, dim), matvec=precondition, dtype=float) if self.op.has_circulant_inverse else None
-        b = np.concatenate([-s_A, [diag * load]]) if bordered else indentation - s_A
-        x0 = guess if bordered else guess[:n]
-        count = [0]
-        x, info = gmres(A, b, x0=x0, rtol=self.rtol, atol=0.0, restart=100, maxiter=100, M=M,
-                        callback=lambda _: count.__setitem__(0, count[0] + 1), callback_type="pr_norm")
-        self.iterations += count[0]
-        if info != 0:
-            raise ContactNotConverged(
-                f"GMRES did not reach rtol={self.rtol} on {n} contact nodes in {count[0]} iterations; "
-                "refine less, or raise dense_limit if memory allows"
-            )
-        return (x[:n], x[n]) if bordered else (x, indentation)
+    def precondition(self, v):
+        out = self.op.circulant_inverse(self._spread(v)).ravel()[self.idx]
+        return np.concatenate([out, v[self.m:]])
+
+    def split(self, x: np.ndarray) -> tuple[np.ndarray, float]:
+        """Forces on the set and the indentation from the solution vector."""
+        return (x[:self.m], float(x[self.m])) if self.bordered else (x, self.indentation)
 
 
-def _coarse_grid(grid: Grid) -> Grid | None:
+def coarse_grid(grid: Grid) -> Grid | None:
     """Every other node of ``grid`` (same period and truncation), or ``None`` when the grid
     is small (< 625 nodes, or < 9 a side) or even-sized: the coarse level of the solvers'
     multilevel starts."""
@@ -247,7 +243,7 @@ def _coarse_start(operator, s, reachable, load, indentation, dense_limit, rtol):
     """
     grid = operator.grid
     Ky, Kx = grid.shape
-    coarse = _coarse_grid(grid)
+    coarse = coarse_grid(grid)
     if coarse is None:
         return None
     sub = ComplianceOperator(coarse, operator.kernel[::2, ::2])
@@ -326,7 +322,7 @@ def solve_normal(
             )
     else:
         first = reachable
-    solve = _LinearSolver(operator, dense_limit, rtol)
+    solve = LinearSolver(dense_limit, rtol, restart=100, maxiter=100, error=ContactNotConverged)
     start = _coarse_start(operator, s, reachable, load, indentation, dense_limit, rtol)
     active = first.copy() if start is None or not start.any() else start
     seen: set[bytes] = set()
@@ -335,7 +331,9 @@ def solve_normal(
     guess = np.zeros(active.sum() + 1)
     for it in range(1, max_iter + 1):
         idx = np.flatnonzero(active)
-        fA, d = solve(idx, s[idx], load, indentation, guess)
+        system = NormalSystem(operator, idx, s[idx], load, indentation)
+        fA, d = system.split(solve(system, guess[:system.n], what=f"{idx.size} contact nodes",
+                                   hint="refine less, or raise dense_limit if memory allows"))
         F = np.zeros_like(s)
         F[idx] = fA
         u = operator.apply(F.reshape(grid.shape)).ravel()
@@ -374,7 +372,7 @@ def solve_normal(
         raise ContactNotConverged(f"no converged contact set in {max_iter} active-set iterations")
 
     contact = F > 0
-    if (contact & _edge_nodes(grid.shape)).any():
+    if (contact & edge_nodes(grid.shape)).any():
         raise ContactAtEdge(
             "the contact reaches the edge of the candidate region "
             f"(|x| <= {grid.x[-1]:.4g} m, |y| <= {grid.y[-1]:.4g} m): increase grid.half_width"
@@ -385,3 +383,7 @@ def solve_normal(
     record = SolveRecord(it, tuple(history), "gmres" if solve.used_gmres else "dense", solve.iterations, resid)
     shape = grid.shape
     return NormalContact(grid, F.reshape(shape), u.reshape(shape), h.reshape(shape), float(d), float(F.sum()), rr, record)
+
+
+# former private names, kept for callers that imported them
+_coarse_grid, _edge_nodes = coarse_grid, edge_nodes

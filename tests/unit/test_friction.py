@@ -12,7 +12,7 @@ from bem.friction import Friction, LoadingUnreachable
 from bem.kinematics import rolling_radius, upwind_field, upwind_table
 from bem.operator import ComplianceOperator
 from bem.problem import solve_frictionless
-from bem.rolling import solve_friction
+from bem import solve_friction
 from bem.spectral import BLOCKS
 
 LAYER = Layer(5e-3, ThreeParameterSolid(G0=3.0e6, tau=0.25, f=1.0), 1000.0)
@@ -200,7 +200,7 @@ def _state(kernels, seed=0):
     """A synthetic active-set state on the frictionless contact of the coarse grid:
     random stick/slip split, slip directions and slip-law slopes."""
     from bem.contact import solve_normal
-    from bem.rolling import RollingOperators
+    from bem.frictional import RollingOperators
 
     ops = RollingOperators(GRID, kernels)
     X, Y = GRID.coordinates()
@@ -218,15 +218,26 @@ def _state(kernels, seed=0):
     return ops, s.ravel(), C, stick, e, k, ell, arm
 
 
+def _system(kernels, load, indentation, omega, mode="pushed_at_top", contact=None):
+    from bem.frictional import RollingSetup, SetState, SetSystem
+    from bem.frictional.loading import constraint
+
+    ops, s, C, stick, e, k, ell, arm = _state(kernels)
+    if contact is not None:
+        C = contact
+    cons = None if omega is not None else constraint(mode, arm, ell, 0.02)
+    setup = RollingSetup(ops=ops, profile=s, arm=arm, ell=ell, radius=0.02, speed=V, mu=0.2, load=load,
+                         indentation=indentation, omega=omega, constraint=cons)
+    inside = np.zeros(s.size, bool)
+    inside[C] = True
+    return SetSystem(setup, SetState(contact=inside, stick=stick & inside, direction=e, slope=k)), C
+
+
 @pytest.mark.parametrize("load, indentation, omega", [(150.0, None, None), (None, 1e-4, 2.4)])
 def test_matrix_free_product_equals_the_dense_system(kernels, load, indentation, omega):
     """The FFT product of the active-set system equals its dense matrix (both come from
     the same row definitions, the blocks from different code: dense tables vs FFT)."""
-    from bem.rolling import _SetSystem, _constraint
-
-    ops, s, C, stick, e, k, ell, arm = _state(kernels)
-    cons = None if omega is not None else _constraint("pushed_at_top", arm, ell, 0.02)
-    system = _SetSystem(ops, s, C, stick, e, k, 0.2, ell, V, load, indentation, omega, cons)
+    system, C = _system(kernels, load, indentation, omega)
     assert system.n == 3 * C.size + (load is not None) + (omega is None)
     M = system.dense()
     x = np.random.default_rng(3).normal(size=system.n)
@@ -235,21 +246,24 @@ def test_matrix_free_product_equals_the_dense_system(kernels, load, indentation,
     np.testing.assert_allclose(system.matvec(x), ref, rtol=0, atol=1e-12 * np.abs(ref).max())
 
 
-def test_upstream_sum_inverts_the_upwind_difference_on_runs(kernels):
-    """On every run of contact nodes along x, summing the differences u_{i+1} - u_i from
-    the run's leading end returns u when u vanishes just past that end."""
-    from bem.rolling import _SetSystem
+def test_line_preconditioner_inverts_a_contact_on_one_grid_row(kernels):
+    """With every contact node on one grid row (stick and slip mixed; Omega and d given,
+    so no global unknowns), the line preconditioner is the exact inverse: M A x = x
+    (the inverse of the running sum, the displacement ahead of each run and the slip rows
+    are all in the line's block). On two rows it is not (the rows' coupling is left out)."""
+    from bem.frictional.preconditioner import LinePreconditioner
 
-    ops, s, C, stick, e, k, ell, arm = _state(kernels)
-    C = C[np.random.default_rng(5).random(C.size) < 0.8]  # several runs per row
-    system = _SetSystem(ops, s, C, stick, e, k, 0.2, ell, V, 150.0, None, 2.0, None)
     Ky, Kx = GRID.shape
-    inside = np.zeros(Ky * Kx, bool)
-    inside[C] = True
-    u = np.where(inside, np.random.default_rng(6).normal(size=Ky * Kx), 0.0).reshape(Ky, Kx)
-    diff = np.zeros_like(u)
-    diff[:, :-1] = u[:, 1:] - u[:, :-1]
-    np.testing.assert_allclose(system._upstream_sum(diff.ravel()[C]), u.ravel()[C], rtol=0, atol=1e-12)
+    row = (Ky // 2) * Kx + np.arange(Kx // 2 - 6, Kx // 2 + 6)
+    two = np.concatenate([row, row + Kx])
+    x = np.random.default_rng(7).normal(size=3 * two.size)
+    for nodes, exact in ((row, True), (two, False)):
+        system, C = _system(kernels, None, 1e-4, 2.4, contact=nodes)
+        assert 0 < system.A.size < C.size
+        LinePreconditioner().attach(system)
+        y = x[:system.n]
+        err = np.abs(system.precondition(system.matvec(y)) - y).max()
+        assert (err < 1e-9) if exact else (err > 1e-3)
 
 
 @pytest.mark.parametrize("mode, omega", [("pushed_at_top", None), ("towed", None), ("torque", None),
@@ -275,7 +289,7 @@ def test_coarse_grid_start_ends_on_the_same_state(monkeypatch):
     """Section 11 at 41 x 41 (Nt = 500): starting the active set from the solution on
     every other node gives the all-stick start's state (10 fine-grid iterations against
     11 here; at 257 x 257, 19 against 31)."""
-    import bem.rolling as rolling
+    import bem.frictional.solve as frictional_solve
 
     grid = Grid.centred((0.25e-3, 0.25e-3), (0.2, 0.2), (500, 500), (5e-3, 5e-3))
     p = Problem(LAYER, Sphere(0.02), grid, Loading(V, load=150.0))
@@ -283,7 +297,7 @@ def test_coarse_grid_start_ends_on_the_same_state(monkeypatch):
     lines = []
     coarse, _ = solve_friction(p, Friction(0.2), kernels=kern, energy=False, progress=lines.append)
     assert any(line.startswith("coarse 21 x 21: friction") for line in lines)
-    monkeypatch.setattr(rolling, "_coarse_start", lambda *args: None)
+    monkeypatch.setattr(frictional_solve, "_from_coarse_grid", lambda *args: None)
     direct, _ = solve_friction(p, Friction(0.2), kernels=kern, energy=False)
     assert np.array_equal(coarse.stick, direct.stick) and np.array_equal(coarse.contact, direct.contact)
     np.testing.assert_allclose(coarse.force_x, direct.force_x, rtol=0, atol=1e-9 * direct.force.max())

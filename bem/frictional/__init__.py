@@ -1,0 +1,26 @@
+"""Frictional steady rolling and sliding (Coulomb friction), the solver of
+:mod:`bem.friction`'s equations: Kalker's active set on contact, stick and slip sets.
+
+Modules, one concept each:
+
+* :mod:`~bem.frictional.operators`: the nine compliance blocks, FFT products and dense blocks;
+* :mod:`~bem.frictional.system`: the sets (:class:`SetState`), what stays fixed
+  (:class:`RollingSetup`) and the linear system of one state (:class:`SetSystem`);
+* :mod:`~bem.frictional.preconditioner`: exact solves on lines of contact nodes along ``x``;
+* :mod:`~bem.frictional.active_set`: the iteration on the sets;
+* :mod:`~bem.frictional.loading`: the loading modes' equilibrium rows;
+* :mod:`~bem.frictional.starts`: frictionless and coarse-grid starts, continuation in ``mu``;
+* :mod:`~bem.frictional.solve`: the entry points :func:`solve_friction` (a
+  :class:`bem.problem.Problem`) and :func:`solve_rolling` (prepared operators).
+
+Linear solves go through :class:`bem.linear.LinearSolver` (shared with the frictionless
+solver): dense LU up to ``Friction.dense_limit`` unknowns, GMRES with FFT products above.
+"""
+
+from .active_set import ActiveSetResult, run_active_set
+from .operators import RollingOperators
+from .solve import solve_friction, solve_rolling
+from .system import RollingSetup, SetState, SetSystem
+
+__all__ = ["ActiveSetResult", "RollingOperators", "RollingSetup", "SetState", "SetSystem", "run_active_set",
+           "solve_friction", "solve_rolling"]

@@ -1,0 +1,86 @@
+"""The nine compliance blocks of a grid for frictional rolling, applied by FFT or read
+densely on node subsets (SI units: kernels in m/N, differenced kernels in 1/N)."""
+
+from __future__ import annotations
+
+import numpy as np
+import scipy.fft as sfft
+
+from ..grid import Grid
+from ..kinematics import upwind_table
+from ..operator import ComplianceOperator
+
+__all__ = ["RollingOperators", "DIFFERENCED"]
+
+#: blocks whose upwind x-difference enters the slip velocity (rows u and v)
+DIFFERENCED = ("uw", "uu", "uv", "vw", "vu", "vv")
+
+
+class RollingOperators:
+    """The nine kernel tables of a grid and the upwind-differenced ``u, v`` rows
+    (``"d" + block``, :func:`bem.kinematics.upwind_table`), their FFT operators (built on
+    demand) and dense blocks on node subsets.
+
+    Parameters
+    ----------
+    grid : Grid
+    kernels : dict
+        The nine blocks of :func:`bem.spectral.influence_kernels` for ``grid`` (m/N).
+    """
+
+    def __init__(self, grid: Grid, kernels: dict):
+        self.grid = grid
+        self.kernels = kernels
+        self.tables = {b: kernels[b] for b in ("ww", "wu", "wv")}
+        for b in DIFFERENCED:
+            self.tables["d" + b] = upwind_table(kernels[b], grid.spacing_x)
+        self._ops: dict = {}
+
+    @property
+    def diagonal(self) -> float:
+        """``C_ww`` of a node on itself (m/N), the scale of the rows written in metres."""
+        g = self.grid
+        return float(self.tables["ww"][g.nodes_y - 1, g.nodes_x - 1])
+
+    def op(self, name: str) -> ComplianceOperator:
+        """The FFT operator of block ``name`` (a kernel or a differenced table)."""
+        if name not in self._ops:
+            table = self.tables[name] if name in self.tables else self.kernels[name]
+            self._ops[name] = ComplianceOperator(self.grid, table)
+        return self._ops[name]
+
+    def dense(self, name: str, rows: np.ndarray, cols: np.ndarray) -> np.ndarray:
+        """Block ``name`` between flat node indices ``rows`` and ``cols``."""
+        Ky, Kx = self.grid.shape
+        jr, ir = np.divmod(rows, Kx)
+        jc, ic = np.divmod(cols, Kx)
+        return self.tables[name][(jr[:, None] - jc[None, :]) + Ky - 1, (ir[:, None] - ic[None, :]) + Kx - 1]
+
+    def _convolve(self, names, N, Sx, Sy):
+        """``sum_j sign_j K_j * f_j`` for each row of ``names`` (block names with signs,
+        ``-`` for the normal force ``-N``), sharing the three forward FFTs."""
+        Ky, Kx = self.grid.shape
+        emb = self.op("ww").embedding
+        F = [sfft.rfft2(np.asarray(f, float).reshape(Ky, Kx), s=emb, workers=-1) for f in (N, Sx, Sy)]
+        out = []
+        for row in names:
+            acc = sum(sign * self.op(name).spectrum * f for (sign, name), f in zip(row, F))
+            out.append(sfft.irfft2(acc, s=emb, workers=-1)[:Ky, :Kx])
+        return out
+
+    def fields(self, N, Sx, Sy):
+        """Downward deflection (m) and upwind strains ``du/dx, dv/dx`` (-) on the grid from
+        the normal forces ``N`` (compressive) and tangential forces ``S_x, S_y`` (N)."""
+        return self._convolve((((1, "ww"), (-1, "wu"), (-1, "wv")),
+                               ((-1, "duw"), (1, "duu"), (1, "duv")),
+                               ((-1, "dvw"), (1, "dvu"), (1, "dvv"))), N, Sx, Sy)
+
+    def displacements(self, N, Sx, Sy):
+        """Horizontal surface displacements ``u, v`` (m)."""
+        return self._convolve((((-1, "uw"), (1, "uu"), (1, "uv")),
+                               ((-1, "vw"), (1, "vu"), (1, "vv"))), N, Sx, Sy)
+
+    def coarse(self, grid: Grid) -> "RollingOperators":
+        """The operators of every other node (``grid`` from :func:`bem.contact.coarse_grid`):
+        the kernel tables read at even offsets."""
+        return RollingOperators(grid, {b: k[::2, ::2] for b, k in self.kernels.items()})

@@ -1,0 +1,206 @@
+"""The frictional solve: frictionless start, coarse-grid start, active set, result."""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import replace
+from typing import Callable
+
+import numpy as np
+
+from ..contact import ContactError, coarse_grid, solve_normal
+from ..energy import viscous_dissipation
+from ..friction import Friction, FrictionalContact, FrictionNotConverged, FrictionRecord, LoadingUnreachable
+from ..kinematics import indenter_radius, rolling_radius
+from ..problem import Problem, compute_kernels
+from ..spectral import BLOCKS
+from .active_set import ActiveSetResult, LinearSolves, run_active_set
+from .loading import check_reachable, constraint
+from .operators import RollingOperators
+from .starts import coarse_start, continuation, frictionless_start
+from .system import RollingSetup
+
+__all__ = ["solve_friction", "solve_rolling"]
+
+
+def solve_friction(problem: Problem, friction: Friction, progress: Callable[[str], None] | None = None,
+                   kernels: dict | None = None, energy: bool = True) -> tuple[FrictionalContact, dict]:
+    """Steady rolling/sliding of ``problem`` with Coulomb ``friction``: the frictional
+    entry point (the frictionless one is :func:`bem.problem.solve_frictionless`).
+
+    Returns the result and the timings (s) of the nine kernels, of the solve and of the
+    energy figure. Pass ``kernels`` (all nine blocks for this grid, layer and speed) to
+    reuse them. With ``energy`` the result carries ``rolling_resistance_energy``
+    ``= (P_visc + P_fric) / V`` (N), the layer's dissipation summed in Fourier space
+    (:func:`bem.energy.viscous_dissipation`, about 1.8 s at ``N_t = 2000``); otherwise it
+    is ``nan``.
+
+    Raises
+    ------
+    FrictionNotConverged, LoadingUnreachable, ContactAtEdge
+        A solve that cannot end on a converged state, with what to change.
+    ValueError
+        Bad input, a speed that is not > 0, or at or above the layer's shear-wave speed.
+    """
+    p = problem
+    kernel_s = 0.0
+    if kernels is None:
+        kernels, kernel_s = compute_kernels(p, BLOCKS, progress)
+    t1 = time.perf_counter()
+    ops = RollingOperators(p.grid, kernels)
+    X, Y = p.grid.coordinates()
+    R = indenter_radius(p.indenter, friction.radius)
+    res = solve_rolling(ops, p.indenter.profile(X, Y), p.indenter.rolling_arm(X, Y),
+                        rolling_radius(p.indenter, Y, friction.radius), R, p.loading.speed, friction,
+                        load=p.loading.load, indentation=p.loading.indentation, progress=progress)
+    t2 = time.perf_counter()
+    timings = {"kernel_s": kernel_s, "solve_s": t2 - t1}
+    if energy:
+        p_visc = viscous_dissipation(p.grid, p.layer, p.loading.speed, -res.force, res.force_x, res.force_y)
+        res = replace(res, rolling_resistance_energy=(p_visc + res.friction_power) / p.loading.speed)
+        timings["energy_s"] = time.perf_counter() - t2
+        if progress:
+            progress(f"energy: (P_visc + P_fric) / V = {res.rolling_resistance_energy:.6g} N, "
+                     f"{timings['energy_s']:.2f} s")
+    return res, timings
+
+
+def solve_rolling(ops: RollingOperators, profile, arm, ell, radius: float, speed: float,
+                  friction: Friction, *, load=None, indentation=None,
+                  progress: Callable[[str], None] | None = None) -> FrictionalContact:
+    """Frictional steady rolling/sliding on prepared operators.
+
+    Parameters
+    ----------
+    ops : RollingOperators
+    profile : ndarray ``(K_y, K_x)``
+        Indenter profile (m), ``inf`` where it cannot touch.
+    arm : ndarray
+        Horizontal projection of a unit normal force (-), ``x / R``.
+    ell : ndarray
+        Distance from the axis of rotation (m), ``l(y)``.
+    radius : float
+        ``R`` (m), the height of the top point above the centre.
+    speed : float
+        ``V`` (m/s), > 0.
+    friction : Friction
+    load, indentation : float
+        ``P`` (N) or ``d`` (m), exactly one.
+
+    Raises
+    ------
+    FrictionNotConverged, LoadingUnreachable, ContactAtEdge, ValueError
+    """
+    if not (math.isfinite(speed) and speed > 0):
+        raise ValueError(f"speed must be > 0 m/s for rolling or sliding with friction, got {speed!r}")
+    g = ops.grid
+    size = g.nodes_x * g.nodes_y
+    arm, ell = np.asarray(arm, float).ravel(), np.asarray(ell, float).ravel()
+    normal = solve_normal(ops.op("ww"), profile, load=load, indentation=indentation)
+    N0 = normal.force.ravel()
+    cons = constraint(friction.mode, arm, ell, radius)
+    check_reachable(friction.mode, friction.mu, cons, N0)
+    setup = RollingSetup(ops=ops, profile=np.asarray(profile, float).ravel(), arm=arm, ell=ell, radius=radius,
+                         speed=speed, mu=friction.mu, load=load, indentation=indentation, omega=friction.omega,
+                         constraint=cons)
+    if friction.mu == 0:
+        zero = np.zeros(size)
+        return _result(setup, friction, N0, zero, zero, normal.indentation,
+                       friction.omega if friction.omega is not None else math.nan,
+                       np.zeros(size, bool), (), "dense", 0)
+
+    solves = LinearSolves(friction.dense_limit)
+    starts = [frictionless_start(N0, ell, speed, friction)]
+    coarse = _from_coarse_grid(setup, friction, N0, progress)
+    if coarse is not None:
+        starts.insert(0, coarse)
+    try:
+        for i, start in enumerate(starts):
+            try:
+                out = run_active_set(setup, friction, start, solves, progress)
+                break
+            except FrictionNotConverged as exc:
+                if i == len(starts) - 1:
+                    raise
+                if progress:
+                    progress(f"friction: the coarse grid's start failed ({exc}); starting from all stick")
+    except LoadingUnreachable:
+        raise
+    except FrictionNotConverged as exc:
+        if friction.mode == "omega":
+            raise
+        out = continuation(setup, friction, N0, solves, progress, exc)
+    return _finish(setup, friction, out, solves)
+
+
+def _from_coarse_grid(setup: RollingSetup, friction: Friction, N0, progress):
+    """Start sets from the same problem on every other node (recursively, as the
+    frictionless solver's start, :func:`bem.frictional.starts.coarse_start`): most of
+    the stick/slip border is then in place and the fine grid needs a few iterations for
+    the rest and for the slip directions. ``None`` below 625 nodes, on even-sized grids
+    and when the coarse solve fails."""
+    ops = setup.ops
+    Ky, Kx = ops.grid.shape
+    coarse = coarse_grid(ops.grid)
+    if coarse is None:
+        return None
+
+    def fine(a):
+        return a.reshape(Ky, Kx)[::2, ::2]
+
+    label = f"coarse {coarse.nodes_x} x {coarse.nodes_y}: "
+    try:
+        res = solve_rolling(ops.coarse(coarse), fine(setup.profile), fine(setup.arm), fine(setup.ell), setup.radius,
+                            setup.speed, friction, load=setup.load, indentation=setup.indentation,
+                            progress=(lambda m: progress(label + m)) if progress else None)
+    except ContactError:
+        return None
+    return coarse_start(res, (Ky, Kx), N0, friction.mu)
+
+
+def _finish(setup: RollingSetup, friction: Friction, out: ActiveSetResult, solves: LinearSolves):
+    h, st = out.gap, out.state
+    contact, reach = st.contact, setup.reach
+    gap_resid = max(np.abs(h[contact]).max(initial=0.0), (-h[reach & ~contact]).max(initial=0.0)) / out.scale
+    return _result(setup, friction, out.N, out.Sx, out.Sy, out.indentation, out.omega, st.stick & contact,
+                   tuple(out.history), "gmres" if solves.used_gmres else "dense", solves.iterations, gap_resid)
+
+
+def _result(setup: RollingSetup, friction: Friction, N, Sx, Sy, d, om, stick, history, solver, lin_it,
+            gap_resid=0.0) -> FrictionalContact:
+    """The result dataclass with its fields, figures and residuals."""
+    ops, s, arm, ell, V = setup.ops, setup.profile, setup.arm, setup.ell, setup.speed
+    g = ops.grid
+    shape = g.shape
+    N2, X2, Y2 = N.reshape(shape), Sx.reshape(shape), Sy.reshape(shape)
+    delta, sx, sy = ops.fields(N2, X2, Y2)
+    u, v = ops.displacements(N2, X2, Y2)
+    contact = N2 > 0
+    omega_eff = 0.0 if math.isnan(om) else om
+    wx = np.where(contact, V * (1 + sx) - omega_eff * ell.reshape(shape), 0.0)
+    wy = np.where(contact, V * sy, 0.0)
+    st = stick.reshape(shape)
+    wx[st] = wy[st] = 0.0  # exactly zero by the stick equations; clear round-off
+    stick_res = float(np.hypot(V * (1 + sx) - omega_eff * ell.reshape(shape), V * sy)[st].max(initial=0.0) / V)
+    mu = friction.mu
+    with np.errstate(invalid="ignore", divide="ignore"):
+        cone = np.hypot(X2, Y2)[st] / (mu * N2[st]) - 1 if mu > 0 else np.zeros(0)
+    coul = float(np.maximum(cone, 0).max(initial=0.0))
+    sl = contact & ~st
+    if mu > 0 and sl.any():
+        with np.errstate(invalid="ignore", divide="ignore"):
+            sm = np.hypot(X2, Y2)[sl]
+            mag = np.abs(sm / (mu * N2[sl]) - 1)
+            ang = 1 - (X2 * wx + Y2 * wy)[sl] / (sm * np.hypot(wx, wy)[sl])  # 0 when S || w
+        coul = max(coul, float(np.nan_to_num(mag, nan=1.0).max()), float(np.nan_to_num(ang, nan=1.0).max()))
+    Q = float((N * arm).sum() + Sx.sum())
+    T = float(-(ell * Sx).sum())
+    if friction.mode == "torque":
+        Q = 0.0 if mu > 0 else Q
+    rr = Q + (T * om / V if T != 0.0 else 0.0)
+    p_fric = float((X2 * wx + Y2 * wy).sum())
+    record = FrictionRecord(len(history), history, solver, lin_it, gap_resid, stick_res, coul)
+    return FrictionalContact(
+        g, N2, X2, Y2, delta, u, v, s.reshape(shape) - d + delta, wx, wy, st, float(d), float(N.sum()),
+        float(om), Q, T, rr, p_fric / V, rr - p_fric / V, V, mu, friction.mode, record)

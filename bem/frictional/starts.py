@@ -1,0 +1,89 @@
+"""Start states of the active set: from the frictionless contact, from the coarse grid's
+frictional solution, and the continuation in ``mu`` for free-``Omega`` modes."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+from typing import Callable
+
+import numpy as np
+
+from ..friction import Friction, FrictionNotConverged
+from .active_set import ActiveSetResult, LinearSolves, run_active_set
+from .system import RollingSetup, SetState
+
+__all__ = ["frictionless_start", "coarse_start", "continuation"]
+
+
+def frictionless_start(N0: np.ndarray, ell: np.ndarray, speed: float, friction: Friction) -> SetState:
+    """The frictionless contact (normal forces ``N0``, N), all in stick except (``Omega``
+    given) the nodes whose rigid creep ``|V - Omega l|`` exceeds 1 % of ``V``, which slip
+    along it with the slip law's own linearisation ``k = |creep| / (mu N)`` (with ``k = 0``
+    the slip rows would force ``w`` along ``e`` with a free perpendicular force, which at
+    small ``mu`` is orders of magnitude above ``mu N`` and sends the iteration astray)."""
+    contact = N0 > 0
+    stick = contact.copy()
+    direction = np.zeros((N0.size, 2))
+    slope = np.zeros(N0.size)
+    if friction.omega is not None:
+        creep = speed - friction.omega * ell
+        start_slip = contact & (np.abs(creep) > 1e-2 * speed)
+        stick &= ~start_slip
+        direction[start_slip, 0] = np.sign(creep[start_slip])
+        slope[start_slip] = np.abs(creep[start_slip]) / (friction.mu * N0[start_slip])
+    return SetState(contact=contact, stick=stick, direction=direction, slope=slope)
+
+
+def coarse_start(coarse_result, shape: tuple[int, int], N0: np.ndarray, mu: float) -> SetState:
+    """Start sets on the fine grid (``shape``) from the solution on every other node: the
+    contact of the fine frictionless solve (``N0``, N), in stick where the nearest coarse
+    node (the upstream one between two) sticks or was out of contact, otherwise in slip
+    along the coarse force with ``k = |w| / (mu N)``."""
+    Ky, Kx = shape
+    res = coarse_result
+    jy, ix = (np.arange(Ky) + 1) // 2, (np.arange(Kx) + 1) // 2
+
+    def pick(f):
+        return f[np.ix_(jy, ix)].ravel()
+
+    contact = N0 > 0
+    Sx, Sy = pick(res.force_x), pick(res.force_y)
+    wmag, smag = pick(np.hypot(res.slip_x, res.slip_y)), np.hypot(Sx, Sy)
+    slip = contact & pick(res.contact & ~res.stick) & (smag > 0) & (wmag > 0)
+    direction = np.zeros((N0.size, 2))
+    slope = np.zeros(N0.size)
+    direction[slip] = np.stack([Sx, Sy], 1)[slip] / smag[slip, None]
+    slope[slip] = wmag[slip] / (mu * N0[slip])
+    return SetState(contact=contact, stick=contact & ~slip, direction=direction, slope=slope)
+
+
+def continuation(setup: RollingSetup, friction: Friction, N0: np.ndarray, solves: LinearSolves,
+                 progress: Callable[[str], None] | None, cause: Exception) -> ActiveSetResult:
+    """Continuation in ``mu`` after a failed direct solve (loading modes with a free
+    ``Omega``): solve at ``mu 2^K`` (``K >= 1``, the smallest with ``mu 2^K >= 0.2``, where
+    a stick zone carries the moment), then halve ``mu`` down to the requested value,
+    each solve starting from the previous sets and slip directions. At small ``mu`` the
+    contact slips almost everywhere and the moment balance is met by one or a few stick
+    nodes near the point where the slip reverses; the direct start (all stick) reaches
+    the wrong ones and cycles, the continuation moves them there one step at a time.
+    Raises :class:`FrictionNotConverged` naming the ``mu`` at which it stopped.
+    """
+    mu = friction.mu
+    K = max(1, math.ceil(math.log2(0.2 / mu))) if mu < 0.2 else 1
+    ladder = [mu * 2.0**j for j in range(K, -1, -1)]
+    if progress:
+        progress(f"friction: direct solve failed ({cause}); continuation in mu from {ladder[0]:.4g}")
+    state = frictionless_start(N0, setup.ell, setup.speed, friction)
+    history: list = []
+    for m in ladder:
+        try:
+            out = run_active_set(replace(setup, mu=m), replace(friction, mu=m), state, solves, progress)
+        except FrictionNotConverged as exc:
+            raise FrictionNotConverged(
+                f"mode {friction.mode!r}, mu = {mu}: the direct solve failed ({cause}) and the "
+                f"continuation in mu stopped at mu = {m:.4g} ({exc}); try mode 'omega' with a "
+                f"prescribed Omega, or a finer grid") from exc
+        history.extend(out.history)
+        state = out.state
+    return replace(out, history=history)

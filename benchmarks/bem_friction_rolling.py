@@ -1,0 +1,113 @@
+"""Frictional steady rolling against CONTACT's figures (issue 11).
+
+The issue's case: a rigid paraboloid ``R = 20 mm`` on a thick elastic layer (``H = 0.2 m``,
+``G = 3 MPa``, ``rho = 0``), ``P = 100 N``, ``mu = 0.2``, ``V = 1 m/s``, ``Omega`` prescribed
+so that the creepage ``(V - Omega R) / V = 0.01`` on every row (``l(y) = R`` through
+``Friction.radius``, CONTACT's uniform longitudinal creepage), period ``L = 1 m`` (5 H;
+``Nt = L / 2a``), half-width 6 mm; spacing 0.2 mm (61 x 61 nodes) and 0.1 mm (121 x 121).
+CONTACT (single thread, same machine, measured by the issue's author): 0.31-0.40 s at
+0.2 mm, 7.8 s at 0.1 mm.
+
+Also the section 11 friction example (``examples/paper-section11-friction.toml``, 41 x 41)
+and the same problem on ``--nodes`` grids (``bem_friction.py``'s large-grid set-up: half-width
+5.2 mm, ``a = 10.4 mm / (nodes - 1)``).
+
+Printed per case: kernels (s), the frictionless solve of the same grid (s), the frictional
+solve (s) and its parts (coarse-grid start, fine active set), active-set and GMRES
+iterations, the result (creep force, stick fraction, R_r) and the peak RSS.
+
+Run: ``.venv/bin/python benchmarks/bem_friction_rolling.py [--case contact|section11|all]
+[--spacing 0.2e-3 0.1e-3] [--nodes 129 257] [--repeat 1]``.
+"""
+
+import argparse
+import time
+
+from _common import LAYER, machine, peak_rss_mb
+
+from bem import Elastic, Grid, Layer, Loading, Paraboloid, Problem, Sphere, solve_friction
+from bem.contact import solve_normal
+from bem.friction import Friction
+from bem.operator import ComplianceOperator
+from bem.problem import compute_kernels
+from bem.spectral import BLOCKS
+
+G, H, R, P, MU, V, XI, L = 3.0e6, 0.2, 0.02, 100.0, 0.2, 1.0, 0.01, 1.0
+
+
+def contact_case(spacing: float):
+    nt = int(round(L / (2 * spacing)))
+    grid = Grid.centred((spacing, spacing), (L, L), (nt, nt), (6e-3, 6e-3))
+    problem = Problem(Layer(H, Elastic(G), 0.0), Paraboloid(R), grid, Loading(V, load=P))
+    return problem, Friction(MU, "omega", omega=V * (1 - XI) / R, radius=R)
+
+
+def section11_case(nodes: int | None):
+    if nodes is None:
+        grid = Grid.centred((0.25e-3, 0.25e-3), (0.2, 0.2), (2000, 2000), (5e-3, 5e-3))
+    else:
+        half = 5.2e-3
+        a = 2 * half / (nodes - 1)
+        nt = int(0.2 / (2 * a)) + 1
+        grid = Grid.centred((a, a), (0.2, 0.2), (nt, nt), (half, half))
+    return Problem(LAYER, Sphere(0.02), grid, Loading(0.05, load=150.0)), Friction(0.2)
+
+
+def run(label: str, problem: Problem, friction: Friction, repeat: int, verbose: bool) -> dict:
+    kernels, kernel_s = compute_kernels(problem, BLOCKS)
+    X, Y = problem.grid.coordinates()
+    profile = problem.indenter.profile(X, Y)
+    op = ComplianceOperator(problem.grid, kernels["ww"])
+    t0 = time.perf_counter()
+    normal = solve_normal(op, profile, load=problem.loading.load)
+    normal_s = time.perf_counter() - t0
+    times, lines = [], []
+    for i in range(repeat):
+        stamp = time.perf_counter()
+        lines.clear()
+
+        def progress(msg, stamp=stamp):
+            lines.append(f"{time.perf_counter() - stamp:7.2f} s  {msg}")
+            if verbose:
+                print("   ", lines[-1], flush=True)
+
+        t0 = time.perf_counter()
+        res, _ = solve_friction(problem, friction, kernels=kernels, energy=False, progress=progress)
+        times.append(time.perf_counter() - t0)
+    times.sort()
+    solve_s = times[len(times) // 2]
+    r = res.record
+    g = problem.grid
+    print(f"{label}: {g.nodes_x} x {g.nodes_y} nodes, a = {g.spacing_x * 1e3:.4g} mm, Nt = {g.truncation_x}, "
+          f"{int(res.contact.sum())} contact nodes")
+    print(f"  kernels {kernel_s:.2f} s, frictionless solve {normal_s:.3f} s "
+          f"({normal.record.iterations} it, {normal.record.linear_iterations} GMRES)")
+    print(f"  frictional solve {solve_s:.3f} s (median of {repeat}; {solve_s / normal_s:.1f} x frictionless), "
+          f"whole run {kernel_s + solve_s:.2f} s; {r.iterations} active-set iterations, "
+          f"{r.linear_solver} {r.linear_iterations} iterations")
+    print(f"  creep force -sum S_x = {-res.force_x.sum():.6g} N ({-res.force_x.sum() / (MU * res.load):.5f} mu P), "
+          f"stick fraction {res.stick_fraction:.4f}, R_r = {res.rolling_resistance:.6g} N, Omega = {res.omega:.8g}")
+    print(f"  residuals gap {r.gap_residual:.1e} stick {r.stick_residual:.1e} Coulomb {r.coulomb_residual:.1e}; "
+          f"peak RSS {peak_rss_mb():.0f} MB", flush=True)
+    coarse = [ln for ln in lines if "coarse" in ln]
+    if coarse:
+        print(f"  coarse start done at {coarse[-1].split(' s')[0].strip()} s")
+    return {"kernel_s": kernel_s, "normal_s": normal_s, "solve_s": solve_s, "result": res}
+
+
+if __name__ == "__main__":
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--case", choices=("contact", "section11", "all"), default="all")
+    ap.add_argument("--spacing", type=float, nargs="*", default=[0.2e-3, 0.1e-3])
+    ap.add_argument("--nodes", type=int, nargs="*", default=[129, 257])
+    ap.add_argument("--repeat", type=int, default=1)
+    ap.add_argument("--verbose", action="store_true")
+    args = ap.parse_args()
+    print(machine())
+    if args.case in ("contact", "all"):
+        for a in args.spacing:
+            run(f"issue 11 case (CONTACT), spacing {a * 1e3:g} mm", *contact_case(a), args.repeat, args.verbose)
+    if args.case in ("section11", "all"):
+        run("section 11 with friction", *section11_case(None), args.repeat, args.verbose)
+        for n in args.nodes:
+            run("section 11 with friction", *section11_case(n), args.repeat, args.verbose)
