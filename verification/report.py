@@ -173,7 +173,7 @@ def drift(results: list[CaseResult], baseline: dict, fraction: float) -> list[Dr
 
 def _gate_rows(result: CaseResult):
     return [(g.quantity, g.method, g.against, g.level, fmt(g.value), fmt(g.reference), f"{g.error:.2e}",
-             f"{g.tolerance:.1e}", g.verdict, g.reason) for g in result.gates]
+             f"{g.tolerance:.1e}" if math.isfinite(g.tolerance) else "-", g.verdict, g.reason) for g in result.gates]
 
 
 def _md_table(head, rows) -> str:

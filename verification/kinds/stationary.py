@@ -124,10 +124,12 @@ def _profile(run: Run):
 
 
 def _gate(result, spec, method, level, value, reference, error, **kw) -> Gate:
+    report_only = kw.pop("report_only", bool(spec.get("report_only", False)))
+    alongside = kw.pop("alongside", False)  # shown beside a gated metric: no tolerance of its own
     return Gate(case=result.name, quantity=kw.pop("quantity", spec["quantity"]), method=method,
                 against=spec["against"], level=level, value=float(value), reference=float(reference),
-                error=float(error), tolerance=float(spec["tolerance"]), reason=kw.pop("reason", spec["reason"]),
-                report_only=kw.pop("report_only", bool(spec.get("report_only", False))))
+                error=float(error), tolerance=math.inf if alongside else float(spec["tolerance"]),
+                reason=kw.pop("reason", spec["reason"]), report_only=report_only or alongside)
 
 
 def _reference(result: CaseResult, against: str, quantity: str, level: str):
@@ -170,7 +172,7 @@ def evaluate(case: dict, result: CaseResult) -> None:
                             v = float(getattr(diff, other.replace("pressure_", "")))
                             result.gates.append(_gate(result, spec, method, level, v, 0.0, v, quantity=other,
                                                       reason="Reported alongside the gated pressure metric.",
-                                                      report_only=True))
+                                                      alongside=True))
                     continue
                 if quantity not in run.scalars:
                     result.gates.append(_gate(result, spec, method, level, math.nan, ref_value, math.nan,
