@@ -32,7 +32,11 @@ from .report import curves
 from .table import as_float
 
 __all__ = ["TABLE2", "TABLE3", "FRICTION_SHARE_LIMIT", "SHARE_PEAK_RANGE", "read_table", "paper_fit", "law_gap",
-           "friction_share_max", "friction_effect", "peak_position", "curve"]
+           "friction_share_max", "friction_effect", "peak_position", "curve", "QUICK", "findings", "run_quick"]
+
+#: the quick (coarse-grid) sweep files for CI, relative to the repository's root
+QUICK = {"loads": "examples/sweeps/quick/quick-table2.toml", "thickness": "examples/sweeps/quick/quick-table3.toml",
+         "speed": "examples/sweeps/quick/quick-fig10.toml"}
 
 #: Table 2, R_r = a P^b (P in N, R_r in N), with friction; key: H (m)
 TABLE2 = {
@@ -141,3 +145,70 @@ def curve(rows: list[dict], x: str, y: str, **fixed) -> tuple[np.ndarray, np.nda
 
     [(_, xs, ys)] = curves([r for r in rows if match(r)], x, y, []) or [({}, np.array([]), np.array([]))]
     return xs, ys
+
+
+def findings(load_rows: list[dict], thickness_rows: list[dict], speed_rows: list[dict],
+             y: str = "rolling_resistance_energy") -> dict:
+    """What a verification case compares with the paper, from the tables of three sweeps
+    with friction (those of :data:`QUICK`, or of ``examples/sweeps/table2-power-law``,
+    ``table3-two-exponential`` and ``fig10*``):
+
+    ``load_rows`` over ``layer.thickness`` (5 and 30 mm) x ``loading.load``;
+    ``thickness_rows`` over ``loading.load`` (50 and 125 N) x ``layer.thickness``;
+    ``speed_rows`` over ``layer.thickness`` or ``loading.load`` x ``loading.speed``.
+
+    Returns a dict: ``table2`` and ``table3`` (per H in m, per P in N: our :class:`Fit` of
+    ``y``, the paper's law, and ``gap``, the largest relative difference of the two over
+    our fitted range), ``friction_share_max`` (P <= 150 N, over the load sweep),
+    ``share_peak_thickness`` (per P, m, :func:`peak_position` of the friction share over
+    the thickness sweep) and ``peak_speed`` (per remaining label of the speed sweep, m/s,
+    :func:`peak_position` in ``log V``).
+    """
+    out: dict = {"y": y, "table2": {}, "table3": {}, "share_peak_thickness": {}, "peak_speed": {}}
+    from .fits import fit_power, fit_two_exponential
+
+    for H in TABLE2:
+        P, R = curve(load_rows, "loading.load", y, **{"layer.thickness": H})
+        if P.size > 2:
+            ours = fit_power(P, R)
+            theirs = paper_fit(TABLE2, H, (P[0], P[-1]))
+            out["table2"][H] = {"ours": ours, "paper": theirs, "gap": law_gap(ours, theirs, P[0], P[-1])}
+    for load in TABLE3:
+        H, R = curve(thickness_rows, "layer.thickness", y, **{"loading.load": load})
+        if H.size > 4:
+            ours = fit_two_exponential(H, R)
+            theirs = paper_fit(TABLE3, load, (H[0], H[-1]))
+            out["table3"][load] = {"ours": ours, "paper": theirs, "gap": law_gap(ours, theirs, H[0], H[-1])}
+        Hs, share = curve(thickness_rows, "layer.thickness", "friction_share", **{"loading.load": load})
+        if Hs.size >= 3:
+            out["share_peak_thickness"][load] = peak_position(Hs, share)
+    out["friction_share_max"] = friction_share_max(load_rows)
+    labels = {(k, r[k]) for r in speed_rows for k in ("layer.thickness", "loading.load") if k in r}
+    keys = sorted({k for k, _ in labels})
+    for combo in sorted({tuple((k, r[k]) for k in keys) for r in speed_rows}):
+        V, R = curve(speed_rows, "loading.speed", y, **dict(combo))
+        if V.size >= 3:
+            out["peak_speed"][combo] = peak_position(V, R, log=True)
+    return out
+
+
+def run_quick(out: str | Path, root: str | Path = ".", client=None, cache: str | Path | None = None,
+              y: str = "rolling_resistance_energy") -> dict:
+    """Run the :data:`QUICK` sweeps (coarse grids, about 50 frictional points) into
+    ``out/<name>`` on ``client`` (default a local cluster, started once for the three)
+    and return their :func:`findings`."""
+    from .engine import connect, run_sweep
+    from .spec import read_sweep
+
+    own = client is None
+    client = client or connect()
+    try:
+        rows = {k: run_sweep(read_sweep(Path(root) / f), Path(out) / Path(f).stem, client=client, cache=cache,
+                             stream=None).rows for k, f in QUICK.items()}
+    finally:
+        if own:
+            cluster = getattr(client, "cluster", None)
+            client.close()
+            if cluster is not None:
+                cluster.close()
+    return findings(rows["loads"], rows["thickness"], rows["speed"], y)

@@ -84,3 +84,27 @@ def test_friction_effect_pairs_the_two_cases():
     x, effect = friction_effect(rows, "layer.thickness")
     np.testing.assert_allclose(x, [0.005, 0.01])
     np.testing.assert_allclose(effect, [0.02, 0.1], rtol=1e-12)
+
+
+def test_findings_on_tables_drawn_from_the_papers_laws():
+    """Rows made from the paper's own laws give back its laws (gap ~ 0), the share's and
+    the speed peak's positions, through the same function a verification case calls."""
+    from sweeps.paper import findings
+
+    loads = [{"status": "ok", "layer.thickness": repr(H), "loading.load": repr(float(P)), "friction_share": "0.01",
+              "rolling_resistance_energy": repr(float(paper_fit(TABLE2, H, (10, 150))(P)))}
+             for H in TABLE2 for P in np.linspace(10, 150, 8)]
+    Hs = np.array([1, 2, 3, 4, 5, 6, 7, 8, 10, 15, 30]) * 1e-3
+    thick = [{"status": "ok", "layer.thickness": repr(float(H)), "loading.load": repr(P),
+              "friction_share": repr(float(0.01 - (H - 7e-3) ** 2)),
+              "rolling_resistance_energy": repr(float(paper_fit(TABLE3, P, (1e-3, 30e-3))(H)))}
+             for P in TABLE3 for H in Hs]
+    V = np.geomspace(1e-3, 1, 9)
+    speed = [{"status": "ok", "layer.thickness": "0.001", "loading.speed": repr(float(v)),
+              "rolling_resistance_energy": repr(float(2 - (np.log10(v) + 1.6) ** 2))} for v in V]
+    f = findings(loads, thick, speed)
+    assert all(f["table2"][H]["gap"] < 1e-6 for H in TABLE2)
+    assert all(f["table3"][P]["gap"] < 1e-5 for P in TABLE3)
+    assert f["friction_share_max"] == 0.01
+    assert f["share_peak_thickness"][50.0] == pytest.approx(7e-3, rel=1e-9)
+    assert f["peak_speed"][(("layer.thickness", "0.001"),)] == pytest.approx(10 ** -1.6, rel=1e-9)
