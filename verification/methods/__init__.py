@@ -37,7 +37,7 @@ __all__ = ["ENTRY_POINT_GROUP", "Method", "builtin", "installed", "parse_option"
            "load_callable", "RESERVED"]
 
 ENTRY_POINT_GROUP = "viscolayer.methods"
-RESERVED = ("analytic", "published", "elastic")
+RESERVED = ("analytic", "published", "elastic", "dissipation")
 _NAME = re.compile(r"[a-z][a-z0-9_-]*\Z")
 
 

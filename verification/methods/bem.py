@@ -11,7 +11,7 @@ from ..metrics import fit_contact_radius
 from ..results import Level, Run
 from ..schema import Field, check_table
 
-__all__ = ["FIELDS", "check", "run", "solve"]
+__all__ = ["FIELDS", "check", "run", "run_line", "solve"]
 
 FIELDS = {
     "spacings": Field("numbers", True, positive=True, doc="node spacings a (m), coarse to fine"),
@@ -52,6 +52,36 @@ def run(problem_cfg: dict, settings: dict, spacing: float) -> Run:
     return Run("bem", spacing, scalars, r.ravel(), res.pressure.ravel(), seconds, problem.grid, res.pressure)
 
 
+def run_line(problem_cfg: dict, settings: dict, spacing: float) -> Run:
+    """The plane-strain BEM (a line contact, per unit length) on one grid of node
+    spacing ``spacing`` (m); ``Run.r`` holds the signed ``x`` of the nodes (m, ``x > 0``
+    ahead) and the scalars are per unit length (N/m)."""
+    from bem.case import problem_from_config
+    from bem.problem import solve_frictionless
+
+    period = settings.get("period", 0.2)
+    nt = math.ceil(settings.get("truncation_factor", 1.0) * period / (2 * spacing) - 1e-9)
+    cfg = {k: dict(v) for k, v in problem_cfg.items()}
+    cfg["grid"] = {"spacing": spacing, "period": period, "truncation": nt, "half_width": settings["half_width"]}
+    problem, _ = problem_from_config(cfg)
+    t = time.perf_counter()
+    res, _ = solve_frictionless(problem)
+    seconds = time.perf_counter() - t
+    scalars = {
+        "rolling_resistance": res.rolling_resistance,
+        "rolling_resistance_energy": res.rolling_resistance_energy,
+        "indentation": res.indentation,
+        "leading_edge": res.leading_edge,
+        "trailing_edge": res.trailing_edge,
+        "peak_pressure": res.peak_pressure,
+        "load": res.load,
+    }
+    return Run("bem", spacing, scalars, np.asarray(res.x), np.asarray(res.pressure_profile), seconds)
+
+
 def solve(problem: dict, level: Level) -> Run:
-    """The method protocol: the case's ``[problem]`` at one level of ``[bem] spacings``."""
+    """The method protocol: the case's ``[problem]`` at one level of ``[bem] spacings``
+    (a line contact in plane strain for ``[indenter] shape = "line"``)."""
+    if problem["indenter"].get("shape") == "line":
+        return run_line(problem, level.settings, level.size)
     return run(problem, level.settings, level.size)
