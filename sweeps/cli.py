@@ -47,7 +47,8 @@ def main(argv: list[str] | None = None) -> int:
                         help="workers of the local cluster (default: the machine's cores)")
     parser.add_argument("--cache", type=Path, help="kernel cache folder (default out/sweeps/kernel-cache)")
     parser.add_argument("--no-cache", action="store_true", help="neither read nor write cached kernels")
-    parser.add_argument("--retry-failed", action="store_true", help="compute again points that failed before")
+    parser.add_argument("--keep-failed", action="store_true",
+                        help="keep the points an earlier run recorded as failed (default: compute them again)")
     parser.add_argument("--no-plots", action="store_true", help="no PNG plots")
     parser.add_argument("--check", action="store_true",
                         help="check the sweep file and every point, count the kernel sets, run nothing")
@@ -73,7 +74,7 @@ def main(argv: list[str] | None = None) -> int:
     cache = None if args.no_cache else (args.cache or Path("out") / "sweeps" / "kernel-cache")
     try:
         report = run_sweep(sweep, out, scheduler=args.scheduler, workers=args.workers, cache=cache,
-                           timeout=args.timeout, retry_failed=args.retry_failed, stream=None if args.quiet else sys.stderr)
+                           timeout=args.timeout, keep_failed=args.keep_failed, stream=None if args.quiet else sys.stderr)
     except SweepError as exc:
         print(f"sweep: error: {exc}", file=sys.stderr)
         return 2

@@ -7,8 +7,8 @@ cache holds it (then it is scattered to the cluster); one task per point solves 
 that set (:func:`sweeps.point.solve_point`), so the points of a group run in parallel on
 every worker while the compliance is formed once. The client saves each new kernel set
 to the cache, appends each row to the table as it arrives and draws the progress bar. A
-rerun reads the table back and computes only the points it lacks (a changed point has a
-new ``point_id`` and is computed again).
+rerun reads the table back and computes only the points it lacks or that failed (a
+changed point has a new ``point_id`` and is computed again).
 """
 
 from __future__ import annotations
@@ -95,19 +95,19 @@ def connect(scheduler: str | None = None, workers: int | None = None, processes:
     return Client(cluster)
 
 
-def _prior(out: Path, header: list[str], points: list[Point], retry_failed: bool) -> dict:
+def _prior(out: Path, header: list[str], points: list[Point], keep_failed: bool) -> dict:
     """Rows of an earlier run of the same points, by index."""
     ids = {p.index: p.point_id for p in points}
     keep = {}
     for row in read_rows(out / TABLE, header):
         i = int(row["index"])
-        if ids.get(i) == row["point_id"] and (row["status"] == "ok" or not retry_failed):
+        if ids.get(i) == row["point_id"] and (row["status"] == "ok" or keep_failed):
             keep[i] = row
     return keep
 
 
 def run_sweep(sweep: Sweep, out: str | Path, *, scheduler: str | None = None, workers: int | None = None,
-              cache: str | Path | None = None, processes: bool = True, retry_failed: bool = False,
+              cache: str | Path | None = None, processes: bool = True, keep_failed: bool = False,
               timeout: float = 10.0,
               stream=sys.stderr, client=None) -> RunReport:
     """Run ``sweep``, writing ``results.csv`` and ``summary.json`` in ``out``.
@@ -125,8 +125,9 @@ def run_sweep(sweep: Sweep, out: str | Path, *, scheduler: str | None = None, wo
     cache : path, optional
         Cache folder (``None``: no cache): ``kernels/`` holds kernel sets by group key,
         ``points/`` finished points by ``point_id`` (any sweep's).
-    retry_failed : bool
-        Compute again the points an earlier run recorded as failed.
+    keep_failed : bool
+        Keep the points an earlier run recorded as failed (by default they are computed
+        again, with the finished ones kept).
     stream : file or None
         Progress and messages (stderr).
     client : distributed.Client, optional
@@ -143,7 +144,7 @@ def run_sweep(sweep: Sweep, out: str | Path, *, scheduler: str | None = None, wo
     points = expand(sweep)
     out = Path(out)
     header = columns([a.key for a in sweep.axes])
-    prior = _prior(out, header, points, retry_failed)
+    prior = _prior(out, header, points, keep_failed)
     store = KernelCache(Path(cache) / "kernels") if cache is not None else None
     done = PointCache(Path(cache) / "points") if cache is not None else None
     for p in points:
@@ -171,7 +172,9 @@ def run_sweep(sweep: Sweep, out: str | Path, *, scheduler: str | None = None, wo
             try:
                 problems[p.index], _ = problem_from_config(p.config)
                 frictional[p.index] = friction_from_config(p.config) is not None
-                keys[p.index] = kernel_key(p.config, problems[p.index])
+                # a line contact (plane strain) forms its own one-dimensional kernels
+                plane = getattr(problems[p.index], "plane_strain", False)
+                keys[p.index] = f"plane-{p.index}" if plane else kernel_key(p.config, problems[p.index])
             except ValueError as exc:  # e.g. a speed at or above the shear-wave speed
                 row = {"index": p.index, "point_id": p.point_id, **p.values, "status": "failed",
                        "error": f"{type(exc).__name__}: {exc}", "seconds": 0.0}
@@ -184,8 +187,11 @@ def run_sweep(sweep: Sweep, out: str | Path, *, scheduler: str | None = None, wo
         by_index = {p.index: p for p in todo}
         futures, kernel_tasks = [], {}
         for key, group in groups.items():
-            cached = store.load(group) if store is not None else None
-            if cached is not None:
+            cached = store.load(group) if store is not None and not key.startswith("plane-") else None
+            if key.startswith("plane-"):
+                kfut = None
+                report.groups -= 1
+            elif cached is not None:
                 [kfut] = client.scatter([cached], hash=False)
                 report.kernels_from_cache += 1
             else:

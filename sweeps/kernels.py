@@ -81,6 +81,9 @@ def group_points(problems: dict, frictional: dict, keys: dict) -> dict:
     for key in dict.fromkeys(keys.values()):
         members = tuple(i for i in problems if keys[i] == key)
         first = problems[members[0]]
+        if getattr(first, "plane_strain", False):  # a line contact: no shared table (its own kernels)
+            out[key] = KernelGroup(key, first, (), members)
+            continue
         nx = max(problems[i].grid.nodes_x for i in members)
         ny = max(problems[i].grid.nodes_y for i in members)
         grid = replace(first.grid, nodes_x=nx, nodes_y=ny)

@@ -2,7 +2,7 @@
 
 The point's case is turned into a problem by :func:`bem.case.problem_from_config`; the
 group's kernel set is cut to the point's grid (:func:`sweeps.kernels.fit_kernels`) and
-handed to :func:`bem.problem.solve_frictionless` or :func:`bem.rolling.solve_friction`,
+handed to :func:`bem.solve_frictionless` or :func:`bem.solve_friction`,
 so no kernel is formed again. A frictionless rolling point also gets the energy figure
 ``P_visc / V`` (:func:`bem.energy.viscous_dissipation`), which a frictional solve
 reports itself. Any error becomes a ``failed`` row with its message: one bad point never
@@ -18,8 +18,7 @@ import numpy as np
 
 from bem.case import friction_from_config, problem_from_config
 from bem.energy import viscous_dissipation
-from bem.problem import solve_frictionless
-from bem.rolling import solve_friction
+from bem import solve_friction, solve_frictionless
 
 from .kernels import fit_kernels
 from .table import RESULTS
@@ -50,13 +49,13 @@ def solve_point(index: int, config: dict, kernels: dict | None) -> dict:
     try:
         problem, auto = problem_from_config(config)
         friction = friction_from_config(config)
-        own = None if kernels is None else fit_kernels(kernels, problem.grid)
+        own = None if kernels is None or getattr(problem, "plane_strain", False) else fit_kernels(kernels, problem.grid)
         if friction is None:
             result, timings = solve_frictionless(problem, grow=auto, kernels=own)
             V = problem.loading.speed
             t1 = time.perf_counter()
             energy = math.nan
-            if V > 0:
+            if V > 0 and not getattr(problem, "plane_strain", False):  # (a line contact: no 3D energy sum)
                 zero = np.zeros(result.grid.shape)
                 energy = viscous_dissipation(result.grid, problem.layer, V, -result.force, zero, zero) / V
             timings["energy_s"] = time.perf_counter() - t1
@@ -66,7 +65,8 @@ def solve_point(index: int, config: dict, kernels: dict | None) -> dict:
             values = scalars(result.summary())
             values["friction_share"] = result.rolling_resistance_friction / result.rolling_resistance_energy
         row.update(values)
-        row.update(status="ok", error="", nodes_x=result.grid.nodes_x, nodes_y=result.grid.nodes_y,
+        row.update(status="ok", error="", nodes_x=getattr(result.grid, "nodes_x", ""),
+                   nodes_y=getattr(result.grid, "nodes_y", ""),
                    iterations=result.record.iterations, **timings)
     except Exception as exc:  # recorded, never raised: the sweep goes on
         row.update(status="failed", error=f"{type(exc).__name__}: {exc}".replace("\n", " "))
