@@ -1,0 +1,208 @@
+"""Direct checks of bem.kinematics and bem.indenters against closed forms.
+
+Written to kill the mutants that survived the rest of the suite (tools/mutation.sh, see
+TESTING.md): each test compares with a value computed here from the geometry (a circle,
+a parabola, a plane, a quadratic) or with a second algorithm (difference of a
+convolution against convolution with the differenced kernel), never with the module's
+own output. Tolerances are a few ulps of the compared quantities (stated per test).
+"""
+
+import math
+
+import numpy as np
+import pytest
+from scipy.signal import convolve2d
+
+from bem.indenters import Cylinder, HeightMap, LineCylinder, Paraboloid, Sphere
+from bem.kinematics import indenter_radius, rolling_radius, upwind_field, upwind_table
+
+# ----------------------------------------------------------------------------- kinematics
+
+
+def test_upwind_difference_of_a_quadratic_is_the_slope_half_a_step_upstream():
+    """f = x^2: (f_{i+1} - f_i) / a = 2 x_i + a exactly (the forward, upwind difference;
+    the downwind one would give 2 x_i - a, a centred one 2 x_i). The last column (the
+    leading edge) repeats its neighbour. Rounding of the differences of f ~ 3.5e-3 over
+    a = 2.5e-4 gives ~3e-15 (measured 1.3e-15); 1e-13 is still 2500 times smaller than
+    the a = 2.5e-4 that tells the upwind difference from the others."""
+    a = 0.25e-3
+    x = np.arange(-6, 7) * a
+    y = np.arange(-2, 3) * a
+    X, Y = np.meshgrid(x, y)
+    f = X**2 + 7.0 * Y  # the y dependence must not leak into d/dx
+    d = upwind_field(f, a)
+    expect = 2 * X[:, :-1] + a
+    np.testing.assert_allclose(d[:, :-1], expect, rtol=0, atol=1e-13)
+    np.testing.assert_array_equal(d[:, -1], d[:, -2])
+    assert d.shape == f.shape
+    dt = upwind_table(f, a)
+    np.testing.assert_allclose(dt[:, :-1], expect, rtol=0, atol=1e-13)
+    np.testing.assert_array_equal(dt[:, -1], dt[:, -2])
+    assert dt.shape == f.shape
+
+
+def test_upwind_field_accepts_lists():
+    np.testing.assert_allclose(upwind_field([[0.0, 1.0, 4.0]], 0.5), [[2.0, 6.0, 6.0]], rtol=0, atol=1e-15)
+
+
+def test_differenced_kernel_applied_is_the_difference_of_the_applied_kernel():
+    """A second algorithm: differencing the displacement u = K * F (a convolution) must
+    equal convolving F with the differenced kernel Kd, at every node off the leading edge
+    whose stencil stays inside the table. Random data; 1e-12 relative (measured 2e-16)."""
+    rng = np.random.default_rng(3)
+    Ky, Kx = 5, 7
+    K = rng.normal(size=(2 * Ky - 1, 2 * Kx - 1))
+    F = rng.normal(size=(Ky, Kx))
+    a = 0.37
+    u = convolve2d(F, K, mode="full")[Ky - 1 : 2 * Ky - 1, Kx - 1 : 2 * Kx - 1]
+    Kd = upwind_table(K, a)
+    ud = convolve2d(F, Kd, mode="full")[Ky - 1 : 2 * Ky - 1, Kx - 1 : 2 * Kx - 1]
+    du = upwind_field(u, a)
+    np.testing.assert_allclose(ud[:, :-1], du[:, :-1], rtol=1e-12, atol=1e-12 * np.abs(du).max())
+
+
+def test_indenter_radius_override_then_own_radius_then_error():
+    assert indenter_radius(Sphere(0.02)) == 0.02
+    assert indenter_radius(Sphere(0.02), 0.05) == 0.05
+    r = indenter_radius(Sphere(0.02), 1)
+    assert r == 1.0 and type(r) is float
+    x = np.linspace(0, 1, 3)
+    with pytest.raises(ValueError, match=r"this indenter has no radius: give friction.radius \(m\)"):
+        indenter_radius(HeightMap(x, x, np.zeros((3, 3))))
+    assert indenter_radius(HeightMap(x, x, np.zeros((3, 3))), 0.3) == 0.3
+    for bad in (0.0, -1.0, math.inf, math.nan):
+        with pytest.raises(ValueError, match="radius must be > 0 m, got"):
+            indenter_radius(Sphere(0.02), bad)
+
+
+def test_rolling_radius_is_the_distance_to_the_axis():
+    """Sphere/paraboloid: sqrt(R^2 - y^2) (Pythagoras), 0 beyond the sphere; a cylinder,
+    or any body given only a radius, R everywhere. Exact to 1 ulp."""
+    R = 0.02
+    Y = np.array([[0.0, 0.006, -0.012], [0.016, 0.02, 0.03]])
+    expect = np.array([[0.02, math.sqrt(R**2 - 0.006**2), 0.016], [0.012, 0.0, 0.0]])
+    for body in (Sphere(R), Paraboloid(R)):
+        got = rolling_radius(body, Y)
+        assert got.shape == Y.shape
+        np.testing.assert_allclose(got, expect, rtol=1e-15, atol=1e-18)
+    np.testing.assert_array_equal(rolling_radius(Cylinder(R, 0.01), Y), np.full(Y.shape, R))
+    np.testing.assert_array_equal(rolling_radius(Sphere(R), Y, 0.05), np.full(Y.shape, 0.05))
+    np.testing.assert_array_equal(rolling_radius(Sphere(R), [0.001, 0.002], 0.05), [0.05, 0.05])
+
+
+# ------------------------------------------------------------------------------ indenters
+
+
+def test_sphere_profile_is_the_circle_and_its_arm_is_x_over_r():
+    """g = R - sqrt(R^2 - r^2) from Pythagoras in long double arithmetic (the module uses
+    the cancellation-free form); relative 1e-14."""
+    R = 0.02
+    X = np.array([0.0, 0.003, -0.011, 0.0])
+    Y = np.array([0.0, 0.004, 0.002, 0.0199])
+    r2 = np.longdouble(X) ** 2 + np.longdouble(Y) ** 2
+    expect = (np.longdouble(R) - np.sqrt(np.longdouble(R) ** 2 - r2)).astype(float)
+    np.testing.assert_allclose(Sphere(R).profile(X, Y), expect, rtol=1e-14, atol=0)
+    np.testing.assert_allclose(Sphere(R).rolling_arm(X, Y), X / R, rtol=1e-15)
+    with pytest.raises(ValueError, match=r"the grid reaches 0\.02 m from the axis, beyond the sphere's radius 0\.02 m"):
+        Sphere(R).profile(np.array([0.0, 0.02]), np.array([0.0, 0.0]))  # r = R exactly is refused
+
+
+def test_paraboloid_profile_and_arm():
+    R = 0.05
+    X, Y = np.array([0.0, 0.01, -0.02]), np.array([0.0, -0.003, 0.004])
+    np.testing.assert_allclose(Paraboloid(R).profile(X, Y), (X**2 + Y**2) / 0.1, rtol=1e-15, atol=0)
+    np.testing.assert_allclose(Paraboloid(R).rolling_arm(X, Y), X / R, rtol=1e-15)
+
+
+def test_cylinder_profile_ends_and_arm():
+    """Circle in x, independent of y inside |y| <= L/2 (the end itself still touches),
+    +inf beyond; arm x / R (a roller's lever arm about its axis)."""
+    R, L = 0.02, 0.006
+    X = np.array([0.0, 0.005, -0.012, 0.005, 0.005])
+    Y = np.array([0.0, 0.003, -0.003, 0.0031, -0.0031])
+    expect = np.array([R - math.sqrt(R * R - x * x) for x in X])
+    got = Cylinder(R, L).profile(X, Y)
+    np.testing.assert_allclose(got[:3], expect[:3], rtol=1e-12, atol=0)
+    assert np.all(np.isinf(got[3:])) and np.all(got[3:] > 0)
+    np.testing.assert_allclose(Cylinder(R, L).rolling_arm(X, Y), X / R, rtol=1e-15)
+    np.testing.assert_allclose(Cylinder(R, L).profile(0.005, np.zeros((2, 2))), np.full((2, 2), expect[1]), rtol=1e-12)
+    with pytest.raises(ValueError, match="the grid reaches beyond the cylinder's radius 0.02 m: reduce grid.half_width"):
+        Cylinder(R, L).profile(np.array([0.02]), np.array([0.0]))
+    for bad in (0.0, -1.0, math.nan, "1"):
+        with pytest.raises(ValueError, match="length must be finite and > 0 m, got"):
+            Cylinder(R, bad)
+    assert Cylinder(R, 1).length == 1
+
+
+def test_line_cylinder_profile_and_arm():
+    R = 0.01
+    X = np.array([0.0, 0.004, -0.0099])
+    expect = np.array([R - math.sqrt(R * R - x * x) for x in X])
+    np.testing.assert_allclose(LineCylinder(R).profile(X), expect, rtol=1e-12, atol=0)
+    np.testing.assert_allclose(LineCylinder(R).profile(X, np.ones(3)), expect, rtol=1e-12, atol=0)
+    np.testing.assert_allclose(LineCylinder(R).rolling_arm(X), X / R, rtol=1e-15)
+    np.testing.assert_allclose(LineCylinder(R).rolling_arm([0.002], None), [0.2], rtol=1e-15)
+    with pytest.raises(ValueError, match=r"the grid reaches \|x\| = 0\.01 m, beyond the cylinder's radius 0\.01 m"):
+        LineCylinder(R).profile([0.0, -0.01])
+
+
+@pytest.mark.parametrize("radius", [0.0, -0.01, math.inf, math.nan, "0.02", None])
+def test_radius_validation(radius):
+    for cls in (Sphere, Paraboloid, LineCylinder):
+        with pytest.raises(ValueError, match="radius must be > 0 m, got"):
+            cls(radius)
+    with pytest.raises(ValueError, match="radius must be > 0 m, got"):
+        Cylinder(radius, 0.01)
+
+
+def test_integer_radius_is_accepted():
+    assert Sphere(1).radius == 1 and Paraboloid(2).radius == 2
+
+
+def test_height_map_of_a_bilinear_surface_interpolates_exactly():
+    """h = c + b x + d y + e x y is reproduced exactly by bilinear interpolation between
+    table nodes; its x-slope from centred differences is b + e y exactly (np.gradient is
+    exact on linear data, one-sided at the ends too). Outside the table: +inf height,
+    zero arm."""
+    x = np.array([-1.0, -0.2, 0.5, 1.5]) * 1e-3
+    y = np.array([-1.0, 0.0, 2.0]) * 1e-3
+    X, Y = np.meshgrid(x, y)
+
+    def h(X, Y):
+        return 1e-4 + 0.02 * X + 0.01 * Y + 30.0 * X * Y + 2e-4
+
+    hm = HeightMap(x, y, h(X, Y))
+    Xq = np.array([-0.9, 0.0, 0.3, 1.4, 1.6, 0.0]) * 1e-3
+    Yq = np.array([-0.5, 1.5, 0.7, -0.9, 0.0, 2.5]) * 1e-3
+    inside = slice(0, 4)
+    np.testing.assert_allclose(hm.profile(Xq, Yq)[inside], h(Xq, Yq)[inside], rtol=1e-13, atol=0)
+    assert np.all(np.isposinf(hm.profile(Xq, Yq)[4:]))
+    np.testing.assert_allclose(hm.rolling_arm(Xq, Yq)[inside], (0.02 + 30.0 * Yq)[inside], rtol=1e-12, atol=0)
+    np.testing.assert_array_equal(hm.rolling_arm(Xq, Yq)[4:], 0.0)
+    assert hm.profile(0.0, np.zeros(2)).shape == (2,)  # broadcast scalar x against array y
+    assert hm.rolling_arm(0.0, np.zeros(2)).shape == (2,)
+
+
+@pytest.mark.parametrize(
+    "x, y, h, message",
+    [
+        ([0.0, 1.0], [0.0, 1.0, 2.0], np.zeros((2, 2)), r"h must have shape \(len\(y\), len\(x\)\) = \(3, 2\), got \(2, 2\)"),
+        ([0.0, 1.0], [0.0, 1.0], np.zeros((2, 2, 1)), r"h must have shape"),
+        (np.zeros((2, 2)), [0.0, 1.0], np.zeros((2, 2)), r"h must have shape"),
+        ([0.0, 1.0], [[0.0, 1.0]], np.zeros((1, 2)), r"h must have shape"),
+        ([0.0], [0.0, 1.0], np.zeros((2, 1)), r"x must be strictly increasing with >= 2 values"),
+        ([0.0, 0.0], [0.0, 1.0], np.zeros((2, 2)), r"x must be strictly increasing"),
+        ([0.0, 1.0], [1.0, 0.0], np.zeros((2, 2)), r"y must be strictly increasing"),
+        ([0.0, 1.0], [0.0, 1.0], [[0.0, -1e-9], [0.0, 0.0]], r"h must be finite and >= 0 m, got min"),
+        ([0.0, 1.0], [0.0, 1.0], [[0.0, np.nan], [0.0, 0.0]], r"h must be finite and >= 0 m"),
+        ([0.0, 1.0], [0.0, 1.0], [[0.0, np.inf], [0.0, 0.0]], r"h must be finite and >= 0 m"),
+    ],
+)
+def test_height_map_validation(x, y, h, message):
+    with pytest.raises(ValueError, match=message):
+        HeightMap(np.asarray(x), np.asarray(y), np.asarray(h))
+
+
+def test_height_map_accepts_zero_and_two_point_tables():
+    hm = HeightMap(np.array([0.0, 1.0]), np.array([0.0, 1.0]), np.zeros((2, 2)))
+    assert hm.profile(0.5, 0.5) == 0.0

@@ -1,0 +1,69 @@
+#!/usr/bin/env bash
+# Mutation testing of one module of the numerical core with mutmut (>= 3.8), against the
+# fast tests that cover it. Never touches the working tree: the project is copied into a
+# scratch directory (git archive of REF, default HEAD) and mutmut runs there.
+#
+#   tools/mutation.sh MODULE [TEST_FILE ...]        e.g. tools/mutation.sh bem/kinematics.py
+#   MUTATION_REF=<commit>  tools/mutation.sh ...    mutate/test another commit
+#   MUTATION_DIR=<dir>     tools/mutation.sh ...    scratch directory (default /tmp/viscolayer-mutation/<module>)
+#
+# Without TEST_FILE the default list of fast test files for MODULE (below) is used.
+# Prints the summary line (killed / survived / ... / score) and the survivors' diffs;
+# `cd $MUTATION_DIR && mutmut show NAME` shows one mutant. Runs under `nice -n 19` with
+# one worker (the machine is shared). See TESTING.md.
+set -euo pipefail
+here=$(cd "$(dirname "$0")/.." && pwd)
+module=${1:?usage: tools/mutation.sh MODULE [TEST_FILE ...]}
+shift
+py=${PYTHON:-$here/.venv/bin/python}
+ref=${MUTATION_REF:-HEAD}
+
+default_tests() {
+    case "$1" in
+        bem/kinematics.py) echo tests/unit/test_mutation_kills_bem.py tests/unit/test_friction.py ;;
+        bem/indenters.py) echo tests/unit/test_mutation_kills_bem.py tests/unit/test_indenters_cli.py tests/unit/test_contact.py ;;
+        verification/metrics.py) echo tests/unit/test_verification_harness.py tests/unit/test_properties_richardson.py ;;
+        bem/spectral.py) echo tests/unit/test_spectral.py tests/unit/test_properties_layer.py tests/unit/test_mutation_kills_bem.py ;;
+        bem/layer.py) echo tests/unit/test_layer.py tests/unit/test_properties_layer.py tests/unit/test_materials.py ;;
+        bem/energy.py) echo tests/unit/test_contact.py tests/unit/test_mutation_kills_bem.py ;;
+        fem_reference/forms.py|fem_reference/postprocess.py|fem_reference/solve.py)
+            echo tests/unit/test_fem_contact.py tests/unit/test_fem_inputs.py tests/unit/test_mutation_kills_fem.py ;;
+        *) echo "no default test list for $1: give the test files" >&2; exit 2 ;;
+    esac
+}
+if [ $# -gt 0 ]; then tests=("$@"); else read -r -a tests <<<"$(default_tests "$module")"; fi
+
+work=${MUTATION_DIR:-/tmp/viscolayer-mutation/$(echo "$module" | tr '/.' '__')}
+rm -rf "$work"
+mkdir -p "$work"
+git -C "$here" archive "$ref" | tar -x -C "$work"
+cd "$work"
+present=()
+for t in "${tests[@]}"; do [ -f "$t" ] && present+=("$t"); done
+toml_list() { local s="" x; for x in "$@"; do s+="\"$x\", "; done; echo "[${s%, }]"; }
+cat >>pyproject.toml <<TOML
+
+[tool.mutmut]
+source_paths = ["bem/", "fem_reference/", "verification/", "casefile/", "sweeps/"]
+only_mutate = ["$module"]
+also_copy = ["examples/", "docs/", "benchmarks/", "README.md"]
+pytest_add_cli_args_test_selection = $(toml_list "${present[@]}")
+pytest_add_cli_args = ["-x", "-q", "-p", "no:cacheprovider", "-m", "not slow"]
+TOML
+echo "mutating $module of $(git -C "$here" rev-parse --short "$ref") in $work against: ${present[*]}" >&2
+export MPLBACKEND=Agg OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 MKL_NUM_THREADS=1
+nice -n 19 "$py" -m mutmut run --max-children 1 >mutmut.log 2>&1 || { tail -40 mutmut.log; exit 1; }
+nice -n 19 "$py" -m mutmut results --all true >results.txt 2>&1 || true
+"$py" - <<'PY'
+import collections, re
+counts = collections.Counter()
+for line in open("results.txt"):
+    m = re.match(r"\s*(\S+): (\w[\w ]*)$", line.rstrip())
+    if m:
+        counts[m.group(2)] += 1
+killed = counts.get("killed", 0)
+total = sum(counts.values())
+alive = total - killed
+print("mutants:", dict(counts), f"score {killed}/{total} = {100.0 * killed / max(total, 1):.1f}%")
+PY
+grep -E ": (survived|no tests|timeout|suspicious)" results.txt || true
