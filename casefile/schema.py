@@ -126,21 +126,21 @@ SCHEMA: tuple = (
                 Key("shear_modulus", "number", "Pa", "shear modulus G", required=True, rule=">0"),)),
             "three_parameter": Variant(
                 "three_parameter", "the paper's three-parameter solid, eq. 71", (
-                    Key("G0", "number", "Pa", "static shear modulus G(0)", ("bem",), required=True, rule=">0"),
-                    Key("tau", "number", "s", "creep time", ("bem",), required=True, rule=">0"),
-                    Key("f", "number", "-", "G1/G2; glassy modulus G0 (1 + f)", ("bem",), required=True, rule=">=0"),
-                ), readers=("bem",)),
+                    Key("G0", "number", "Pa", "static shear modulus G(0)", required=True, rule=">0"),
+                    Key("tau", "number", "s", "creep time", required=True, rule=">0"),
+                    Key("f", "number", "-", "G1/G2; glassy modulus G0 (1 + f)", required=True, rule=">=0"),
+                )),
             "prony": Variant(
                 "prony", "generalized Maxwell: G*(w) = G_inf + sum_i G_i i w tau_i / (1 + i w tau_i)", (
-                    Key("G_inf", "number", "Pa", "relaxed modulus", ("bem",), required=True, rule=">0"),
-                    Key("G", "numbers", "Pa", "branch moduli G_i", ("bem",), required=True, rule=">0"),
-                    Key("tau", "numbers", "s", "branch relaxation times tau_i", ("bem",), required=True, rule=">0"),
-                ), readers=("bem",)),
+                    Key("G_inf", "number", "Pa", "relaxed modulus", required=True, rule=">0"),
+                    Key("G", "numbers", "Pa", "branch moduli G_i", required=True, rule=">0"),
+                    Key("tau", "numbers", "s", "branch relaxation times tau_i", required=True, rule=">0"),
+                )),
             "table": Variant(
-                "table", "a measured master curve", (
+                "table", "a measured master curve (fem-reference refuses it: no time-domain form)", (
                     Key("file", "path", "-", "CSV with columns omega (rad/s), G' (Pa), G'' (Pa); "
-                        "header line optional", ("bem",), required=True),
-                ), readers=("bem",)),
+                        "header line optional", required=True),
+                )),
         },
     ),
     Section(
@@ -212,16 +212,26 @@ SCHEMA: tuple = (
     Section(
         "fem", "the fem_reference discretization (a_est: the estimated contact radius)",
         keys=(
-            Key("model", "string", "-", "axisymmetric (r, z) section or 3D quarter cylinder", ("fem",),
-                default="axisymmetric", choices=("axisymmetric", "3d")),
+            Key("model", "string", "-", "axisymmetric (r, z) section, 3D quarter cylinder, or the plane-strain "
+                "(x, z) section of a line contact (steady rolling at [loading] speed)", ("fem",),
+                choices=("axisymmetric", "3d", "plane_strain"),
+                default_doc="plane_strain for a line indenter, axisymmetric otherwise"),
             Key("element_size", "number", "m", "element size in the contact zone", ("fem",), rule=">0",
-                default_doc="axisymmetric min(a_est/24, H/4), 3d min(a_est/8, H/2)"),
-            Key("contact_zone", "number", "m", "radius of the refined candidate contact zone", ("fem",),
-                rule=">0", default_doc="1.4 a_est"),
-            Key("domain_radius", "number", "m", "lateral extent of the truncated layer", ("fem",), rule=">0",
-                default_doc="contact_zone + 8 H"),
+                default_doc="axisymmetric min(a_est/24, H/4), 3d min(a_est/8, H/2), plane_strain "
+                            "min(b_est/40, H/8) (b_est: the relaxed half-width)"),
+            Key("contact_zone", "number", "m", "radius (plane strain: half-width) of the refined candidate "
+                "contact zone", ("fem",), rule=">0", default_doc="1.4 a_est; plane_strain 1.5 b_est"),
+            Key("domain_radius", "number", "m", "lateral extent of the truncated layer (not plane_strain)",
+                ("fem",), rule=">0", default_doc="contact_zone + 8 H"),
+            Key("upstream", "number", "m", "plane_strain: length ahead of the indenter (+x), where the material "
+                "enters undeformed and relaxed; at least contact_zone + 2 max(H, b_est)", ("fem",), rule=">0",
+                default_doc="contact_zone + max(8 H, 6 b_est)"),
+            Key("downstream", "number", "m", "plane_strain: length behind the indenter (-x), where the material "
+                "leaves; at least contact_zone + 2 max(H, b_est) + 3 V t_r (t_r the longest creep time)",
+                ("fem",), rule=">0", default_doc="contact_zone + max(8 H, 6 b_est, 8 V t_r)"),
             Key("far_size", "number", "m", "largest element size", ("fem",), rule=">0",
-                default_doc="H/2 axisymmetric, H in 3d"),
+                default_doc="H/2 axisymmetric and plane_strain (along x behind the indenter at least V t_r/4), "
+                            "H in 3d"),
             Key("grading", "number", "-", "size growth with distance from the zone", ("fem",), default=0.3,
                 rule=">0"),
             Key("refine", "integer", "-", "uniform refinements of the mesh (nested levels)", ("fem",),

@@ -49,12 +49,15 @@ a_est (m) is the smaller of the Hertz radius and the thin-layer asymptote
 
 from .errors import (ContactNotConvergedError, ContactZoneError, FemReferenceError,
                      InputError, LinearSolverError, MeshError, MissingDependencyError)
-from .problem import ContactProblem, ElasticMaterial, FemSettings, Indenter, Layer, Loading
+from .materials import ElasticMaterial, PronyMaterial, ThreeParameterMaterial
+from .problem import ContactProblem, FemSettings, Indenter, Layer, Loading
 from .result import ContactResult
+from .rolling_result import RollingResult
 from .solve import solve
 
 __all__ = [
-    "solve", "ContactProblem", "Layer", "ElasticMaterial", "Indenter", "Loading",
-    "FemSettings", "ContactResult", "FemReferenceError", "InputError", "MeshError",
+    "solve", "ContactProblem", "Layer", "ElasticMaterial", "PronyMaterial",
+    "ThreeParameterMaterial", "Indenter", "Loading", "FemSettings", "ContactResult",
+    "RollingResult", "FemReferenceError", "InputError", "MeshError",
     "LinearSolverError", "ContactNotConvergedError", "ContactZoneError", "MissingDependencyError",
 ]

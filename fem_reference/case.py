@@ -4,9 +4,12 @@
 :mod:`casefile` checks the file for ``fem-reference`` (unknown keys, types, and physics
 this reference cannot solve, such as ``[friction]``, are errors; the BEM's ``[grid]`` is
 ignored); this module turns the checked dict into the FEM's own objects: ``[layer]
-thickness``, ``[material] model = "elastic"`` with ``shear_modulus``, ``[indenter]
-shape`` ("sphere" | "paraboloid") and ``radius``, ``[loading] load`` or ``indentation``
-(``speed`` must be 0) and the ``[fem]`` section. SI units.
+thickness`` and ``density``, ``[material]`` ``model = "elastic"`` (``shear_modulus``),
+``"three_parameter"`` (``G0``, ``tau``, ``f``) or ``"prony"`` (``G_inf``, ``G``, ``tau``),
+``[indenter] shape`` ("sphere" | "paraboloid" | "line") and ``radius``, ``[loading]
+load`` or ``indentation`` and ``speed`` (> 0 only for a line), and the ``[fem]``
+section. A measured master curve (``model = "table"``) has no time-domain form and is
+refused. SI units.
 """
 
 from __future__ import annotations
@@ -17,7 +20,8 @@ from typing import Any, Dict, Iterable
 import casefile
 
 from .errors import InputError
-from .problem import ContactProblem, ElasticMaterial, FemSettings, Indenter, Layer, Loading
+from .materials import ElasticMaterial, PronyMaterial, ThreeParameterMaterial
+from .problem import ContactProblem, FemSettings, Indenter, Layer, Loading
 
 __all__ = ["load_case", "problem_from_dict"]
 
@@ -28,25 +32,46 @@ def problem_from_dict(data: Dict[str, Any]) -> ContactProblem:
     Raises
     ------
     InputError
-        For anything :func:`casefile.validate` rejects, a non-zero speed, or any value
-        that breaks its rule.
+        For anything :func:`casefile.validate` rejects, a master-curve table, a speed
+        given to a stationary (non-line) model or at or above the shear-wave speed, or
+        any value that breaks its rule.
     """
     try:
         data = casefile.validate(data, "fem")
     except casefile.CaseFileError as exc:
         raise InputError(str(exc)) from None
-    speed = data["loading"].get("speed", 0.0)
-    if speed != 0:
-        raise InputError(f"[loading] speed must be 0 m/s: fem-reference solves stationary contact "
-                         f"only (bem solve rolls), got {speed!r}")
     loading = data["loading"]
     return ContactProblem(
-        layer=Layer(thickness=data["layer"]["thickness"]),
-        material=ElasticMaterial(shear_modulus=data["material"]["shear_modulus"]),
+        layer=Layer(thickness=data["layer"]["thickness"], density=data["layer"].get("density", 0.0)),
+        material=material_from_dict(data["material"]),
         indenter=Indenter(shape=data["indenter"]["shape"], radius=data["indenter"]["radius"]),
-        loading=Loading(load=loading.get("load"), indentation=loading.get("indentation")),
+        loading=Loading(load=loading.get("load"), indentation=loading.get("indentation"),
+                        speed=loading.get("speed", 0.0)),
         fem=FemSettings(**data.get("fem", {})),
     )
+
+
+def material_from_dict(table: Dict[str, Any]):
+    """The ``[material]`` table as fem_reference's material.
+
+    Raises
+    ------
+    InputError
+        For ``model = "table"``: a measured master curve G*(omega) has no time-domain
+        (Prony) form, which the moving-frame FEM integrates.
+    """
+    model = table["model"]
+    if model == "elastic":
+        return ElasticMaterial(shear_modulus=table["shear_modulus"])
+    if model == "three_parameter":
+        return ThreeParameterMaterial(G0=table["G0"], tau=table["tau"], f=table["f"])
+    if model == "prony":
+        return PronyMaterial(G_inf=table["G_inf"], G=tuple(table["G"]), tau=tuple(table["tau"]))
+    raise InputError(
+        f"fem-reference cannot solve [material] model = \"{model}\": a measured master curve "
+        "G*(omega) has no time-domain form, and the FEM integrates the viscous strains of a "
+        "generalized Maxwell solid along the flow; fit a Prony series to the curve and give "
+        "model = \"prony\" (G_inf, G, tau), or use bem solve")
 
 
 def load_case(path: str | Path, overrides: Iterable[str] = ()) -> ContactProblem:

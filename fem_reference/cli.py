@@ -3,7 +3,11 @@
 Progress (a line per stage and per active-set iteration) goes to stderr; the
 result goes to stdout, as one JSON object with ``--json`` (``contact_radius``
 m, ``indentation`` m, ``load`` N, ``peak_pressure`` Pa, ``mesh`` and
-``solver``), before any file is written. Output paths are checked before the
+``solver``; for a line indenter, steady rolling in plane strain: ``speed`` m/s,
+``load`` N/m, ``indentation`` m, ``rolling_resistance`` N/m,
+``pressure_centroid_x``, ``leading_edge``, ``trailing_edge``, ``contact_length`` m,
+``peak_pressure`` Pa, ``dissipation`` and ``pressure_power`` W/m,
+``energy_balance``), before any file is written. Output paths are checked before the
 solve. Exit status 0 on success, 2 for bad input, 1 when the solve fails or an
 output could not be written.
 """
@@ -26,7 +30,8 @@ __all__ = ["main"]
 def _parser() -> argparse.ArgumentParser:
     ap = argparse.ArgumentParser(prog="fem-reference", description=__doc__.splitlines()[0])
     sub = ap.add_subparsers(dest="command", required=True)
-    s = sub.add_parser("solve", help="solve a case file (elastic, stationary, frictionless)")
+    s = sub.add_parser("solve", help="solve a case file (frictionless: stationary elastic, or "
+                       "steady rolling of a line indenter in plane strain)")
     s.add_argument("case", help="TOML case file (docs/case-files.md)")
     s.add_argument("--json", action="store_true", help="print the result as one JSON object")
     s.add_argument("--set", action="append", default=[], metavar="SECTION.KEY=VALUE",
@@ -40,6 +45,7 @@ def _parser() -> argparse.ArgumentParser:
 def main(argv: Optional[List[str]] = None) -> int:
     args = _parser().parse_args(argv)
     from .output import plot_result, write_vtu
+    from .rolling_result import RollingResult
     from .solve import solve
 
     def progress(line: str) -> None:
@@ -49,6 +55,9 @@ def main(argv: Optional[List[str]] = None) -> int:
         plot = casefile.check_output(args.plot, (".png", ".pdf", ".svg"), "--plot")
         vtu = casefile.check_output(args.vtu, (".vtu",), "--vtu")
         problem = load_case(args.case, args.set)
+        if problem.fem.model == "plane_strain" and (plot or vtu):
+            raise InputError("--plot and --vtu are not available for a line (plane-strain) case yet; "
+                             "use --json (pressure profile: the Python result's pressure_x, pressure)")
     except (InputError, casefile.CaseFileError) as exc:
         print(f"fem-reference: error: {exc}", file=sys.stderr)
         return 2
@@ -63,6 +72,17 @@ def main(argv: Optional[List[str]] = None) -> int:
     summary = result.summary()
     if args.json:
         print(json.dumps(summary, indent=2, allow_nan=False))
+    elif isinstance(result, RollingResult):
+        eb = summary["energy_balance"]
+        print(f"speed              {result.speed:.6e} m/s\nload               {result.load:.6e} N/m\n"
+              f"indentation        {result.indentation:.6e} m\n"
+              f"rolling resistance {result.rolling_resistance:.6e} N/m\n"
+              f"contact edges      {result.trailing_edge:.6e} .. {result.leading_edge:.6e} m\n"
+              f"peak pressure      {result.peak_pressure:.6e} Pa\n"
+              f"dissipation        {result.dissipation:.6e} W/m (energy balance "
+              f"{'n/a' if eb is None else f'{eb:+.2e}'})\n"
+              f"plane_strain: {result.mesh.unknowns} unknowns, "
+              f"{result.solver.iterations} active-set iterations")
     else:
         print(f"contact radius {result.contact_radius:.6e} m\nindentation    "
               f"{result.indentation:.6e} m\nload           {result.load:.6e} N\n"

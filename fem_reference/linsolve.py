@@ -34,11 +34,15 @@ class DirectSolver:
     symmetric minimum-degree ordering (no pivoting: least fill); if it breaks
     down or is inaccurate, SuperLU runs again with COLAMD and partial pivoting.
     Each solve does one step of iterative refinement and checks its residual.
+    ``orderings``: the (permc_spec, diag_pivot_thresh) pairs tried in turn; the
+    non-symmetric rolling system goes straight to COLAMD with threshold pivoting.
     """
 
     name = "direct"
 
-    def __init__(self, S: sp.spmatrix, scale: np.ndarray):
+    ORDERINGS = (("MMD_AT_PLUS_A", 0.0), ("COLAMD", 1.0))
+
+    def __init__(self, S: sp.spmatrix, scale: np.ndarray, orderings=ORDERINGS):
         t0 = time.perf_counter()
         self.S = S.tocsr()
         self.D = 1.0 / np.sqrt(scale)
@@ -46,7 +50,7 @@ class DirectSolver:
         Ss = (Dm @ self.S @ Dm).tocsc()
         probe = np.random.default_rng(0).standard_normal(Ss.shape[0])
         self.lu = None
-        for perm, thresh in (("MMD_AT_PLUS_A", 0.0), ("COLAMD", 1.0)):
+        for perm, thresh in orderings:
             try:
                 lu = spla.splu(Ss, permc_spec=perm, diag_pivot_thresh=thresh,
                                options=dict(SymmetricMode=thresh == 0.0))

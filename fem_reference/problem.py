@@ -1,4 +1,6 @@
-"""Inputs of a stationary, elastic, frictionless indentation problem.
+"""Inputs of a frictionless contact problem: stationary elastic indentation
+(axisymmetric or 3D), or steady rolling of a rigid cylinder in plane strain on an
+elastic or viscoelastic layer (``Indenter("line", R)``).
 
 Each input is a frozen dataclass validated in ``__post_init__``; a bad value
 raises :class:`~fem_reference.errors.InputError` naming the field, the value and
@@ -8,15 +10,16 @@ the rule. SI units throughout (m, N, Pa).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Optional
 
 import numpy as np
 
 from .errors import InputError
+from .materials import ElasticMaterial, PronyMaterial, ThreeParameterMaterial
 
-__all__ = ["Layer", "ElasticMaterial", "Indenter", "Loading", "FemSettings",
-           "ContactProblem"]
+__all__ = ["Layer", "ElasticMaterial", "PronyMaterial", "ThreeParameterMaterial", "Indenter",
+           "Loading", "FemSettings", "ContactProblem"]
 
 
 def _positive(name: str, value, unit: str) -> None:
@@ -36,39 +39,34 @@ class Layer:
     """Layer of thickness ``thickness`` (m) bonded to a rigid base at z = 0.
 
     The free surface is z = H; the layer extends laterally without bound (the
-    finite-element domain truncates it at ``FemSettings.domain_radius``).
+    finite-element domain truncates it at ``FemSettings.domain_radius``, or at the
+    upstream and downstream lengths in plane strain). ``density`` rho (kg/m^3, >= 0)
+    brings the steady moving-frame inertia rho V^2 d2u/dx2 of a rolling solve; 0
+    neglects it.
     """
 
     thickness: float
+    density: float = 0.0
 
     def __post_init__(self):
         _positive("layer.thickness", self.thickness, "m")
-
-
-@dataclass(frozen=True)
-class ElasticMaterial:
-    """Incompressible linear elastic solid of shear modulus ``shear_modulus`` (Pa).
-
-    Poisson's ratio is exactly 1/2; the plane-strain modulus of the half-space is
-    E* = 4 G for a rigid indenter.
-    """
-
-    shear_modulus: float
-
-    def __post_init__(self):
-        _positive("material.shear_modulus", self.shear_modulus, "Pa")
+        if isinstance(self.density, bool) or not isinstance(self.density, (int, float)) or \
+                not math.isfinite(self.density) or self.density < 0:
+            raise InputError(f"layer.density must be a number >= 0 kg/m^3, got {self.density!r}")
 
 
 @dataclass(frozen=True)
 class Indenter:
-    """Rigid axisymmetric indenter, ``shape`` "sphere" (exact, paper eq. 13) or
-    "paraboloid", of radius ``radius`` (m).
+    """Rigid indenter of radius ``radius`` (m): axisymmetric, ``shape`` "sphere"
+    (exact, paper eq. 13) or "paraboloid"; or "line", a rigid circular cylinder with
+    its axis along y in plane strain (exact circle s = R - sqrt(R^2 - x^2); the load is
+    then per unit length, N/m).
     """
 
     shape: str
     radius: float
 
-    SHAPES = ("sphere", "paraboloid")
+    SHAPES = ("sphere", "paraboloid", "line")
 
     def __post_init__(self):
         if self.shape not in self.SHAPES:
@@ -76,10 +74,11 @@ class Indenter:
         _positive("indenter.radius", self.radius, "m")
 
     def profile(self, r):
-        """Height s(r) (m) of the indenter above its lowest point at radius r (m).
+        """Height s(r) (m) of the indenter above its lowest point at radius r (m) (at
+        abscissa x = r for a line contact).
 
-        Sphere: s = R - sqrt(R^2 - r^2) (paper eq. 13 with z_c = R); paraboloid:
-        s = r^2 / (2 R).
+        Sphere and line: s = R - sqrt(R^2 - r^2) (paper eq. 13 with z_c = R);
+        paraboloid: s = r^2 / (2 R).
         """
         r = np.asarray(r, dtype=float)
         R = self.radius
@@ -92,14 +91,20 @@ class Indenter:
 
 @dataclass(frozen=True)
 class Loading:
-    """Load control (``load``, N, total on the indenter) or displacement control
-    (``indentation``, m, downward rigid displacement of the indenter): exactly one.
+    """Load control (``load``, N, total on the indenter; N/m per unit length for a
+    line contact) or displacement control (``indentation``, m, downward rigid
+    displacement of the indenter): exactly one. ``speed`` V (m/s, >= 0): the indenter
+    moves in +x (the material flows at -V in its frame); only a line contact rolls.
     """
 
     load: Optional[float] = None
     indentation: Optional[float] = None
+    speed: float = 0.0
 
     def __post_init__(self):
+        if isinstance(self.speed, bool) or not isinstance(self.speed, (int, float)) or \
+                not math.isfinite(self.speed) or self.speed < 0:
+            raise InputError(f"loading.speed must be a finite number >= 0 m/s, got {self.speed!r}")
         if (self.load is None) == (self.indentation is None):
             raise InputError("loading needs exactly one of load (N) and indentation (m), "
                              f"got load={self.load!r}, indentation={self.indentation!r}")
@@ -113,19 +118,30 @@ class FemSettings:
 
     Parameters
     ----------
-    model : {"axisymmetric", "3d"}
-        Axisymmetric (r, z) model, or a quarter cylinder in 3D (symmetry planes
-        x = 0 and y = 0).
+    model : {"axisymmetric", "3d", "plane_strain"}, optional
+        Axisymmetric (r, z) model, a quarter cylinder in 3D (symmetry planes
+        x = 0 and y = 0), or the plane-strain (x, z) section of a line contact.
+        Default: "plane_strain" for a line indenter, "axisymmetric" otherwise.
     element_size : float, optional
         Element size h_c (m) in the candidate contact zone. Default: axisymmetric
-        min(a_est / 24, H / 4), 3D min(a_est / 8, H / 2), with a_est the estimated
-        contact radius.
+        min(a_est / 24, H / 4), 3D min(a_est / 8, H / 2), plane strain
+        min(a_est / 40, H / 8), with a_est the estimated contact radius (half-width).
     contact_zone : float, optional
         Radius (m) of the refined candidate zone of the top surface that carries the
-        contact multiplier. Default 1.4 a_est. The contact must stay inside it.
+        contact multiplier (plane strain: half-width, |x| <= contact_zone). Default
+        1.4 a_est (plane strain 1.5 a_est). The contact must stay inside it.
     domain_radius : float, optional
         Lateral extent (m) of the truncated layer (traction-free outer side).
-        Default contact_zone + 8 H.
+        Default contact_zone + 8 H. Not used in plane strain (see upstream and
+        downstream).
+    upstream : float, optional
+        Plane strain: length (m) of the layer ahead of the indenter (x > 0), where the
+        material enters undeformed and relaxed (the inflow). Default contact_zone +
+        max(8 H, 6 a_est).
+    downstream : float, optional
+        Plane strain: length (m) of the layer behind the indenter (x < 0), where the
+        material leaves. Default contact_zone + max(8 H, 6 a_est, 8 V t_r), t_r the
+        longest creep (retardation) time: the material recovers before it leaves.
     far_size : float, optional
         Largest element size (m). Default H / 2 (axisymmetric), H (3D), at most
         domain_radius / 4.
@@ -147,10 +163,12 @@ class FemSettings:
         Limit of the active-set iteration (>= 1).
     """
 
-    model: str = "axisymmetric"
+    model: Optional[str] = None
     element_size: Optional[float] = None
     contact_zone: Optional[float] = None
     domain_radius: Optional[float] = None
+    upstream: Optional[float] = None
+    downstream: Optional[float] = None
     far_size: Optional[float] = None
     grading: float = 0.3
     refine: int = 0
@@ -159,11 +177,11 @@ class FemSettings:
     fit_nodes: int = 3
     max_iterations: int = 100
 
-    MODELS = ("axisymmetric", "3d")
+    MODELS = ("axisymmetric", "3d", "plane_strain")
     SOLVERS = ("direct", "minres")
 
     def __post_init__(self):
-        if self.model not in self.MODELS:
+        if self.model is not None and self.model not in self.MODELS:
             raise InputError(f"fem.model must be one of {self.MODELS}, got {self.model!r}")
         if self.solver not in self.SOLVERS:
             raise InputError(f"fem.solver must be one of {self.SOLVERS}, got {self.solver!r}")
@@ -171,7 +189,8 @@ class FemSettings:
             from ._deps import import_pyamg
 
             import_pyamg()
-        for name in ("element_size", "contact_zone", "domain_radius", "far_size"):
+        for name in ("element_size", "contact_zone", "domain_radius", "upstream", "downstream",
+                     "far_size"):
             _optional_positive(f"fem.{name}", getattr(self, name), "m")
         _positive("fem.grading", self.grading, "(-)")
         _positive("fem.rtol", self.rtol, "(-)")
@@ -181,19 +200,76 @@ class FemSettings:
                 raise InputError(f"fem.{name} must be an integer >= {low}, got {value!r}")
 
 
+MATERIALS = (ElasticMaterial, PronyMaterial, ThreeParameterMaterial)
+_MODEL_NAMES = {ElasticMaterial: "elastic", PronyMaterial: "prony",
+                ThreeParameterMaterial: "three_parameter"}
+
+
 @dataclass(frozen=True)
 class ContactProblem:
-    """A layer, a material, an indenter, a loading and a discretization."""
+    """A layer, a material, an indenter, a loading and a discretization.
+
+    A sphere or a paraboloid is stationary elastic indentation (axisymmetric or 3D);
+    a line indenter is plane strain and may roll (``loading.speed`` > 0) on an elastic,
+    Prony or three-parameter layer. ``fem.model`` left unset is filled in from the
+    indenter.
+
+    Raises
+    ------
+    InputError
+        A wrong type, a model that does not fit the indenter, a viscoelastic material
+        or a speed given to the stationary models, or a speed at or above the
+        shear-wave speed c_s = sqrt(G_inf / rho).
+    """
 
     layer: Layer
-    material: ElasticMaterial
+    material: object
     indenter: Indenter
     loading: Loading
     fem: FemSettings = field(default_factory=FemSettings)
 
     def __post_init__(self):
-        for name, cls in (("layer", Layer), ("material", ElasticMaterial),
+        for name, cls in (("layer", Layer), ("material", MATERIALS),
                           ("indenter", Indenter), ("loading", Loading),
                           ("fem", FemSettings)):
             if not isinstance(getattr(self, name), cls):
-                raise InputError(f"{name} must be a {cls.__name__}, got {getattr(self, name)!r}")
+                kind = cls.__name__ if isinstance(cls, type) else \
+                    " or ".join(c.__name__ for c in cls)
+                raise InputError(f"{name} must be a {kind}, got {getattr(self, name)!r}")
+        line = self.indenter.shape == "line"
+        model = self.fem.model or ("plane_strain" if line else "axisymmetric")
+        if line != (model == "plane_strain"):
+            raise InputError(f"fem.model = {model!r} does not fit indenter.shape = "
+                             f"{self.indenter.shape!r}: a line indenter is solved in plane strain "
+                             "(fem.model = \"plane_strain\", the default), a sphere or a paraboloid "
+                             "by the axisymmetric or 3d model")
+        if model != self.fem.model:
+            object.__setattr__(self, "fem", replace(self.fem, model=model))
+        if not line:
+            if not isinstance(self.material, ElasticMaterial):
+                raise InputError(
+                    f"fem-reference cannot solve [material] model = "
+                    f"\"{_MODEL_NAMES[type(self.material)]}\" with [indenter] shape = "
+                    f"\"{self.indenter.shape}\": the axisymmetric and 3d models are stationary "
+                    "and elastic; viscoelastic rolling is solved in plane strain (shape = \"line\")")
+            if self.loading.speed != 0:
+                raise InputError(
+                    f"[loading] speed must be 0 m/s: fem-reference solves stationary contact only "
+                    f"for [indenter] shape = \"{self.indenter.shape}\" (it rolls shape = \"line\", "
+                    f"plane strain), got {self.loading.speed!r}")
+        rho, V = self.layer.density, self.loading.speed
+        if rho > 0 and V > 0:
+            c_s = self.shear_wave_speed
+            if V >= c_s:
+                raise InputError(
+                    f"[loading] speed = {V!r} m/s is at or above the layer's shear-wave speed "
+                    f"c_s = sqrt(G_inf / rho) = sqrt({self.material.relaxed_modulus:g} Pa / {rho:g} "
+                    f"kg/m^3) = {c_s:.6g} m/s: the steady moving-frame problem is subsonic only; "
+                    "lower [loading] speed (or set [layer] density = 0 to neglect inertia)")
+
+    @property
+    def shear_wave_speed(self) -> float:
+        """c_s = sqrt(G_inf / rho) (m/s) of the relaxed layer; inf without inertia."""
+        if self.layer.density == 0:
+            return math.inf
+        return math.sqrt(self.material.relaxed_modulus / self.layer.density)

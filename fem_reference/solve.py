@@ -67,7 +67,8 @@ def _top_vertices(system: LayerSystem, u: np.ndarray):
 
 def solve(problem: ContactProblem,
           progress: Optional[Callable[[str], None]] = None) -> ContactResult:
-    """Solve the stationary frictionless contact of ``problem``.
+    """Solve the frictionless contact of ``problem``: stationary (axisymmetric or 3D),
+    or, for a line indenter, steady rolling in plane strain (:mod:`.rolling_solve`).
 
     Parameters
     ----------
@@ -78,13 +79,18 @@ def solve(problem: ContactProblem,
 
     Returns
     -------
-    ContactResult
+    ContactResult or RollingResult
+        A :class:`~.rolling_result.RollingResult` for a line indenter.
 
     Raises
     ------
     InputError, MeshError, LinearSolverError, ContactNotConvergedError, ContactZoneError
         See :mod:`fem_reference.errors`.
     """
+    if problem.fem.model == "plane_strain":
+        from .rolling_solve import solve_rolling
+
+        return solve_rolling(problem, progress)
     say = progress or (lambda _: None)
     times = {}
     t0 = time.perf_counter()

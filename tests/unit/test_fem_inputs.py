@@ -51,12 +51,16 @@ def test_case_file_reads_the_shared_format(tmp_path):
     assert problem.material.shear_modulus == 3e6
     assert problem.indenter == Indenter("sphere", 0.02)
     assert problem.loading == Loading(load=100.0)
-    assert problem.fem == FemSettings()
+    assert problem.fem == FemSettings(model="axisymmetric")  # the unset model filled in from the indenter
 
 
 @pytest.mark.parametrize("change, message", [
     ({"material": {"model": "three_parameter", "G0": 3e6, "tau": 0.25, "f": 1.0}},
-     'cannot solve \\[material\\] model = "three_parameter"; it reads elastic'),
+     'cannot solve \\[material\\] model = "three_parameter" with \\[indenter\\] shape = "sphere": '
+     'the axisymmetric and 3d models are stationary and elastic'),
+    ({"material": {"model": "table", "file": __file__}},
+     'cannot solve \\[material\\] model = "table": a measured master curve G\\*\\(omega\\) has no '
+     'time-domain form'),
     ({"loading__speed": 0.05}, "\\[loading\\] speed must be 0 m/s"),
     ({"indenter__shape": "cylinder", "indenter__length": 0.01},
      'cannot solve \\[indenter\\] shape = "cylinder"; it reads sphere, paraboloid'),

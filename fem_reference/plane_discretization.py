@@ -1,0 +1,118 @@
+"""Sizes of the plane-strain rolling model: the ``[fem]`` defaults resolved, and the
+checks that the truncated layer is long enough.
+
+The defaults scale with an a-priori contact half-width b_est (m) for the relaxed
+modulus G_inf (the widest contact), the smaller of the plane-strain Hertz half-width
+b_H = sqrt(4 P R / (pi E*)) = sqrt(P R / (pi G_inf)) (E* = 4 G; Johnson 1985, eq. 4.43) and the thin-layer
+asymptote b_T = (15 P R H^3 / (2 G_inf))^(1/5) (bonded incompressible layer,
+frictionless top: p = G (b^2 - x^2)^2 / (8 R H^3), docs/derivations.md); under
+displacement control b_est = sqrt(2 R d).
+
+Lengths: the material enters at x = upstream, undeformed and relaxed, and leaves at
+x = -downstream. The influence of the clamped ends decays over about the thickness H
+(and the contact size), and behind the indenter the material recovers over V t_r,
+with t_r the longest creep time. Defaults: upstream = Z + max(8 H, 6 b_est),
+downstream = Z + max(8 H, 6 b_est, 8 V t_r). Shorter than Z + 2 max(H, b_est)
+(upstream) or Z + 2 max(H, b_est) + 3 V t_r (downstream) is an error.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from .errors import InputError
+from .materials import PronyMaterial, as_prony
+from .problem import ContactProblem
+
+__all__ = ["PlaneDiscretization", "estimate_half_width", "resolve_plane", "creep_length"]
+
+
+@dataclass(frozen=True)
+class PlaneDiscretization:
+    """Resolved sizes (m) of the plane-strain mesh (see :mod:`.mesh_plane`):
+    ``mesh_size`` the spacing the structured mesh is made with, ``element_size`` =
+    mesh_size / 2^refine after the uniform (nested) refinements."""
+
+    element_size: float
+    mesh_size: float
+    contact_zone: float
+    band: float
+    upstream: float
+    downstream: float
+    far_x_up: float
+    far_x_down: float
+    far_z: float
+    grading: float
+    estimated_half_width: float
+    creep_length: float
+    refine: int
+
+
+def estimate_half_width(problem: ContactProblem) -> float:
+    """A-priori contact half-width b_est (m) for the relaxed modulus (module docstring)."""
+    R = problem.indenter.radius
+    H = problem.layer.thickness
+    G = problem.material.relaxed_modulus
+    if problem.loading.load is not None:
+        P = problem.loading.load
+        b_hertz = math.sqrt(P * R / (math.pi * G))
+        b_thin = (15.0 * P * R * H ** 3 / (2.0 * G)) ** 0.2
+        return min(b_hertz, b_thin)
+    return math.sqrt(2.0 * R * problem.loading.indentation)
+
+
+def creep_length(problem: ContactProblem) -> float:
+    """V t_r (m): the distance the material travels in its longest creep time (0 for an
+    elastic layer or at rest)."""
+    mat = as_prony(problem.material)
+    if not isinstance(mat, PronyMaterial):
+        return 0.0
+    return problem.loading.speed * mat.retardation_time
+
+
+def resolve_plane(problem: ContactProblem) -> PlaneDiscretization:
+    """Fill in the plane-strain defaults of ``problem.fem`` and check the lengths.
+
+    Raises
+    ------
+    InputError
+        A candidate zone not several elements wide or wider than the cylinder, or an
+        upstream (inflow) or downstream length too short (the message names the
+        setting and the length needed).
+    """
+    fem = problem.fem
+    H = problem.layer.thickness
+    b = estimate_half_width(problem)
+    h = fem.element_size or min(b / 40.0, H / 8.0)
+    zone = fem.contact_zone or 1.5 * b
+    lv = creep_length(problem)
+    near = max(H, b)
+    upstream = fem.upstream or zone + max(8.0 * H, 6.0 * b)
+    downstream = fem.downstream or zone + max(8.0 * H, 6.0 * b, 8.0 * lv)
+    far = fem.far_size or max(H / 2.0, h)
+    far = max(far, h)
+    if zone >= problem.indenter.radius:
+        raise InputError(f"fem.contact_zone must be < indenter.radius = {problem.indenter.radius} m "
+                         f"for a cylinder, got {zone}")
+    if zone < 4.0 * h:
+        raise InputError(f"fem.contact_zone must be >= 4 element sizes = {4.0 * h} m, got {zone}")
+    need_up = zone + 2.0 * near
+    if upstream < need_up:
+        raise InputError(
+            f"fem.upstream = {upstream:.4g} m is too short: the material must enter undeformed and "
+            f"relaxed, which needs the inflow at least contact_zone + 2 max(H, b_est) = {need_up:.4g} m "
+            f"ahead of the indenter (default contact_zone + max(8 H, 6 b_est) = "
+            f"{zone + max(8.0 * H, 6.0 * b):.4g} m); raise fem.upstream")
+    need_down = zone + 2.0 * near + 3.0 * lv
+    if downstream < need_down:
+        raise InputError(
+            f"fem.downstream = {downstream:.4g} m is too short for the material to relax before it "
+            f"leaves: it needs at least contact_zone + 2 max(H, b_est) + 3 V t_r = {need_down:.4g} m "
+            f"(V t_r = {lv:.4g} m, the creep length at {problem.loading.speed:g} m/s); raise "
+            "fem.downstream (default contact_zone + max(8 H, 6 b_est, 8 V t_r))")
+    return PlaneDiscretization(element_size=h / 2 ** fem.refine, mesh_size=h, contact_zone=zone,
+                               band=min(0.5 * zone, H), upstream=upstream, downstream=downstream,
+                               far_x_up=far, far_x_down=max(far, lv / 4.0), far_z=far,
+                               grading=fem.grading, estimated_half_width=b, creep_length=lv,
+                               refine=fem.refine)

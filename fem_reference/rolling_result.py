@@ -1,0 +1,125 @@
+"""Result of a steady-rolling (plane-strain) solve."""
+
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass, field
+from typing import Any, Dict
+
+import numpy as np
+
+from .result import SolverRecord
+
+__all__ = ["PlaneMeshStats", "RollingResult"]
+
+
+@dataclass(frozen=True)
+class PlaneMeshStats:
+    """Size of the plane-strain discretization. Lengths in m."""
+
+    model: str
+    elements: int
+    vertices: int
+    displacement_dofs: int
+    pressure_dofs: int
+    internal_dofs: int
+    unknowns: int
+    contact_nodes: int
+    element_size: float
+    contact_zone: float
+    upstream: float
+    downstream: float
+    far_size: float
+
+
+@dataclass(frozen=True)
+class RollingResult:
+    """Steady frictionless rolling of a rigid cylinder on the layer, per unit length.
+
+    Attributes
+    ----------
+    speed : float
+        V (m/s); the indenter moves in +x, the leading edge is at +x.
+    load : float
+        Normal load per unit length (N/m).
+    indentation : float
+        Downward rigid displacement d of the cylinder's lowest point (m).
+    rolling_resistance : float
+        R_r = sum_j F_j x_j / R (N/m): the moment of the contact pressure about the
+        cylinder's axis divided by R (the BEM's definition), F_j = int phi_j lam dx.
+    pressure_centroid : float
+        x_c = int p x dx / int p dx (m); R_r = load x_c / R.
+    leading_edge, trailing_edge : float
+        x (m) of the contact's front (+x) and rear edges, each the zero of the
+        least-squares line g^(2/3) = alpha + beta x through the gaps of the
+        ``fem.fit_nodes`` surface vertices just outside it (:mod:`.postprocess`).
+    contact_length : float
+        leading_edge - trailing_edge (m).
+    peak_pressure : float
+        Largest nodal contact pressure (Pa).
+    dissipation : float
+        Power dissipated by the dashpots, integrated over the layer (W/m).
+    pressure_power : float
+        V int p s'(x) dx (W/m): the power the contact pressure puts into the layer
+        (equals ``dissipation`` in steady state; R_r V is its small-slope form).
+    energy_balance : float
+        dissipation / pressure_power - 1 (-); nan for an elastic layer or at rest.
+    pressure_x, pressure : ndarray
+        Multiplier nodes x (m) and contact pressure (Pa) along x.
+    surface_x, surface_uz : ndarray
+        Top-surface vertices x (m) and their vertical displacement u_z (m, up positive).
+    mesh : PlaneMeshStats
+    solver : SolverRecord
+    fields : dict
+        ``mesh``, ``u``, ``p`` and the bases, for export; not compared, not printed.
+    """
+
+    speed: float
+    load: float
+    indentation: float
+    rolling_resistance: float
+    pressure_centroid: float
+    leading_edge: float
+    trailing_edge: float
+    peak_pressure: float
+    dissipation: float
+    pressure_power: float
+    pressure_x: np.ndarray
+    pressure: np.ndarray
+    surface_x: np.ndarray
+    surface_uz: np.ndarray
+    mesh: PlaneMeshStats
+    solver: SolverRecord
+    fields: Dict[str, Any] = field(default=None, repr=False, compare=False)
+
+    @property
+    def contact_length(self) -> float:
+        """leading_edge - trailing_edge (m)."""
+        return self.leading_edge - self.trailing_edge
+
+    @property
+    def energy_balance(self) -> float:
+        """dissipation / pressure_power - 1 (-); nan when no power goes in."""
+        if self.pressure_power == 0:
+            return float("nan")
+        return self.dissipation / self.pressure_power - 1.0
+
+    def summary(self) -> Dict[str, Any]:
+        """Scalars, mesh and solver record as a JSON-ready dict (SI units; energy_balance
+        None when undefined)."""
+        eb = self.energy_balance
+        return {
+            "speed": self.speed,
+            "load": self.load,
+            "indentation": self.indentation,
+            "rolling_resistance": self.rolling_resistance,
+            "pressure_centroid_x": self.pressure_centroid,
+            "leading_edge": self.leading_edge,
+            "trailing_edge": self.trailing_edge,
+            "contact_length": self.contact_length,
+            "peak_pressure": self.peak_pressure,
+            "dissipation": self.dissipation,
+            "pressure_power": self.pressure_power,
+            "energy_balance": None if not np.isfinite(eb) else eb,
+            "mesh": asdict(self.mesh),
+            "solver": asdict(self.solver),
+        }
