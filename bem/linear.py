@@ -65,9 +65,12 @@ class LinearSolver:
         self.restart, self.maxiter, self.error = restart, maxiter, error
         self.iterations, self.used_gmres = 0, False
 
-    def __call__(self, system, guess: np.ndarray | None = None, *, what: str = "", hint: str = "") -> np.ndarray:
-        """Solve ``system`` (``guess`` starts GMRES); returns the solution vector.
-        ``what`` names the system and ``hint`` says what to change, in error messages."""
+    def __call__(self, system, guess: np.ndarray | None = None, *, rtol: float | None = None, what: str = "",
+                 hint: str = "") -> np.ndarray:
+        """Solve ``system`` (``guess`` starts GMRES; ``rtol`` overrides the solver's for
+        this call); returns the solution vector. ``what`` names the system and ``hint``
+        says what to change, in error messages."""
+        rtol = self.rtol if rtol is None else rtol
         n = system.n
         if n <= self.dense_limit:
             try:
@@ -84,10 +87,10 @@ class LinearSolver:
             b, start = (system.b - system.matvec(x0) if guess is not None else system.b), None
         else:
             b, start = system.b, x0
-        x, info = gmres(A, b, x0=start, rtol=self.rtol, atol=0.0, restart=self.restart, maxiter=self.maxiter, M=M,
+        x, info = gmres(A, b, x0=start, rtol=rtol, atol=0.0, restart=self.restart, maxiter=self.maxiter, M=M,
                          callback=lambda _: count.__setitem__(0, count[0] + 1), callback_type="pr_norm")
         self.iterations += count[0]
         if info != 0 or not np.isfinite(x).all():
-            raise self.error(f"GMRES did not reduce the residual by {self.rtol:.1e} on {what or f'{n} unknowns'} "
+            raise self.error(f"GMRES did not reduce the residual by {rtol:.1e} on {what or f'{n} unknowns'} "
                              f"in {count[0]} iterations" + (f"; {hint}" if hint else ""))
         return x0 + x if self.correction else x
