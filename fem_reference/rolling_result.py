@@ -57,7 +57,9 @@ class RollingResult:
     peak_pressure : float
         Largest nodal contact pressure (Pa).
     dissipation : float
-        Power dissipated by the dashpots, integrated over the layer (W/m).
+        Power dissipated by the dashpots, integrated over the layer (W/m): the branch
+        stresses times the dashpot strain rates, sum_i int 2 G_i (eps - eps_v,i) :
+        (-V d eps_v,i / dx) dA.
     pressure_power : float
         V int p s'(x) dx (W/m): the power the contact pressure puts into the layer
         (equals ``dissipation`` in steady state; R_r V is its small-slope form).

@@ -1,0 +1,74 @@
+"""Timing and mesh convergence of fem_reference's plane-strain steady rolling.
+
+The case: a rigid cylinder R = 20 mm, P = 500 N/m, on a layer H = 1 mm (H/b about 1.5)
+of the paper's three-parameter solid (G0 = 3 MPa, tau = 0.25 s, f = 1), rolling at
+V = 0.01 m/s (V tau_1 / b = 1.9, near the loss peak), no inertia.
+
+``.venv/bin/python benchmarks/fem_rolling_2d.py``: one solve at the default
+discretization, timed (stages from the solver record).
+``... --convergence``: three nested meshes (h0 = 1e-4 m = b/6, refined once and twice),
+the change of R_r, edges, indentation and energy balance between them, and the
+Richardson estimate where the sequence is monotone (else the spread is the estimate).
+``... --lengths``: R_r with the upstream and downstream lengths changed.
+"""
+
+import sys
+import time
+
+import fem_reference as fr
+
+R, P, H, V = 0.02, 500.0, 1.0e-3, 0.01
+MATERIAL = fr.ThreeParameterMaterial(3.0e6, 0.25, 1.0)
+
+
+def solve(**fem):
+    t0 = time.perf_counter()
+    res = fr.solve(fr.ContactProblem(fr.Layer(H), MATERIAL, fr.Indenter("line", R),
+                                     fr.Loading(load=P, speed=V), fr.FemSettings(**fem)))
+    return res, time.perf_counter() - t0
+
+
+def line(res, t, label):
+    return (f"{label:>22s}: {res.mesh.unknowns:7d} unknowns {t:7.1f} s  R_r {res.rolling_resistance:.6f} N/m  "
+            f"edges [{res.trailing_edge * 1e3:.5f}, {res.leading_edge * 1e3:.5f}] mm  "
+            f"d {res.indentation * 1e6:.5f} um  energy balance {res.energy_balance:+.3%}")
+
+
+def richardson(values, ratio=2.0):
+    """(estimate, observed order) from three values on meshes h, h/2, h/4, or (None, None)
+    when the differences change sign (no asymptotic range)."""
+    d1, d2 = values[1] - values[0], values[2] - values[1]
+    if d1 == 0 or d2 == 0 or d1 * d2 < 0 or abs(d2) >= abs(d1):
+        return None, None
+    import math
+
+    order = math.log(abs(d1 / d2)) / math.log(ratio)
+    return values[2] + d2 / (ratio ** order - 1.0), order
+
+
+if __name__ == "__main__":
+    if "--convergence" in sys.argv:
+        runs = [solve(element_size=1e-4, refine=k) for k in range(3)]
+        for (res, t), k in zip(runs, range(3)):
+            print(line(res, t, f"h = {1e-4 / 2 ** k:.2e} m"))
+        for name in ("rolling_resistance", "leading_edge", "trailing_edge", "indentation",
+                     "contact_length"):
+            vals = [getattr(r, name) for r, _ in runs]
+            est, order = richardson(vals)
+            tail = (f"Richardson {est:.6g} (order {order:.2f}); finest vs it {vals[2] / est - 1:+.3%}"
+                    if est is not None else
+                    f"not monotone: spread of the two finest {abs(vals[2] / vals[1] - 1):.3%}")
+            print(f"{name:>18s}: {vals[0]:.6g} {vals[1]:.6g} {vals[2]:.6g}; changes "
+                  f"{vals[1] / vals[0] - 1:+.3%}, {vals[2] / vals[1] - 1:+.3%}; {tail}")
+    elif "--lengths" in sys.argv:
+        base, t = solve(element_size=5e-5)
+        print(line(base, t, "default lengths"))
+        for up, down in ((0.0047, None), (0.017, None), (None, 0.012), (None, 0.043),
+                         (0.032, 0.086)):
+            res, t = solve(element_size=5e-5, upstream=up, downstream=down)
+            print(line(res, t, f"up {up} down {down}") +
+                  f"  R_r {res.rolling_resistance / base.rolling_resistance - 1:+.4%}")
+    else:
+        res, t = solve()
+        print(line(res, t, "default"))
+        print({k: round(v, 2) for k, v in res.solver.times.items()})
