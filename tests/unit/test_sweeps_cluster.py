@@ -55,7 +55,7 @@ def dask_cluster(tmp_path):
     env = {**os.environ, "DASK_DISTRIBUTED__LOGGING__DISTRIBUTED": "error"}
     scheduler = subprocess.Popen([str(DASK), "scheduler", "--host", "127.0.0.1", "--port", "0", "--no-dashboard",
                                   "--scheduler-file", str(info)], env=env, stdout=subprocess.DEVNULL,
-                                 stderr=subprocess.DEVNULL)
+                                 stderr=subprocess.DEVNULL, start_new_session=True)
     worker = None
     try:
         for _ in range(300):
@@ -65,18 +65,13 @@ def dask_cluster(tmp_path):
         address = json.loads(info.read_text())["address"]
         worker = subprocess.Popen([str(DASK), "worker", address, "--nworkers", "1", "--nthreads", "1",
                                    "--no-dashboard"], env=env, stdout=subprocess.DEVNULL,
-                                  stderr=subprocess.DEVNULL)
+                                  stderr=subprocess.DEVNULL, start_new_session=True)
         yield address
-    finally:
+    finally:  # each in its own session: the worker's nanny and its process go together
         for proc in (worker, scheduler):
             if proc is not None:
-                proc.terminate()
-        for proc in (worker, scheduler):
-            if proc is not None:
-                try:
-                    proc.wait(10)
-                except subprocess.TimeoutExpired:
-                    proc.kill()
+                os.killpg(proc.pid, signal.SIGKILL)
+                proc.wait()
 
 
 def test_a_sweep_on_a_running_cluster_gives_the_local_table(tmp_path, dask_cluster, capsys):
