@@ -46,7 +46,7 @@ def test_chirp_kernel_equals_direct_sum(material, speed, density):
     layer = Layer(2e-3, material, density)
     fast, slow = line_kernel(g, layer, speed), line_kernel_direct(g, layer, speed)
     assert fast.shape == (1, 81)
-    assert np.abs(fast - slow).max() < 1e-12 * np.abs(slow).max()  # measured 2e-15
+    assert np.abs(fast - slow).max() < 1e-12 * np.abs(slow).max()  # measured 7e-16
 
 
 def test_line_kernel_is_the_3d_kernel_summed_over_a_uniform_strip():
@@ -83,7 +83,7 @@ def test_stationary_line_contact_is_2d_hertz():
     assert abs(res.rolling_resistance) < 1e-12 * P and math.isnan(res.rolling_resistance_energy)
     inside = np.abs(res.x) < hz.half_width - a
     err = res.pressure_profile - hz.pressure(res.x)
-    assert np.sqrt(np.mean(err[inside] ** 2)) < 5e-3 * hz.peak_pressure  # measured 1.5e-3
+    assert np.sqrt(np.mean(err[inside] ** 2)) < 2e-3 * hz.peak_pressure  # measured 5.6e-4
 
 
 def test_moving_elastic_line_contact_is_hertz_with_the_moving_load_modulus():
@@ -98,7 +98,8 @@ def test_moving_elastic_line_contact_is_hertz_with_the_moving_load_modulus():
     res, _ = _elastic(V, rho)
     hz = hertz_line_contact(P, R, G_eff)
     a = res.grid.spacing
-    assert hz.half_width > 1.1 * B0  # inertia softens it noticeably
+    assert hz.half_width > 1.1 * B0  # inertia softens it noticeably (1.19 b0)
+    # measured: half-width 0.04 spacings from Hertz(G_eff), p0 1.6e-5, R_r and the energy figure 0
     assert res.half_width == pytest.approx(hz.half_width, abs=0.15 * a)
     assert res.peak_pressure == pytest.approx(hz.peak_pressure, rel=2e-4)
     assert abs(res.rolling_resistance) < 1e-9 * P and abs(res.rolling_resistance_energy) < 1e-9 * P
