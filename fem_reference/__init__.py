@@ -1,5 +1,8 @@
-"""Exactly incompressible finite-element reference for stationary, elastic,
-frictionless indentation of a layer bonded to a rigid base.
+"""Exactly incompressible finite-element reference for frictionless contact on a layer
+bonded to a rigid base: stationary elastic indentation (axisymmetric or 3D), and steady
+rolling of a rigid cylinder on an elastic or viscoelastic (Prony, three-parameter)
+layer in plane strain, in the frame of the indenter (:mod:`.rolling_solve`,
+docs/derivations.md section 7).
 
 Taylor-Hood P2-P1 displacement-pressure elements (scikit-fem) on gmsh meshes
 (read through meshio, named physical groups, refined around the contact), in an
@@ -18,21 +21,33 @@ Python use::
                                   Indenter("sphere", 0.02), Loading(load=100.0)))
     result.contact_radius, result.indentation, result.peak_pressure
 
+Rolling (plane strain, per unit length)::
+
+    result = solve(ContactProblem(Layer(1e-3), ThreeParameterMaterial(3e6, 0.25, 1.0),
+                                  Indenter("line", 0.02), Loading(load=500.0, speed=0.01)))
+    result.rolling_resistance, result.leading_edge, result.trailing_edge
+    result.indentation, result.pressure_x, result.pressure, result.dissipation
+    result.summary()
+
 Command line: ``fem-reference solve CASE.toml --json [--set fem.model='"3d"']
 [--plot FILE.png] [--vtu FILE.vtu]``. The case file is the one of ``bem solve``
 (docs/case-files.md); fem_reference reads ``[layer] thickness``,
-``[material] model = "elastic"`` with ``shear_modulus``, ``[indenter] shape``
-("sphere" | "paraboloid") and ``radius``, ``[loading] load`` or
-``indentation`` (``speed`` must be 0), and its own ``[fem]`` section:
+``density``, ``[material] model = "elastic"`` with ``shear_modulus`` (and, for a
+line, ``"three_parameter"`` or ``"prony"``), ``[indenter] shape`` ("sphere" |
+"paraboloid" | "line") and ``radius``, ``[loading] load`` or ``indentation`` and
+``speed`` (0 except for a line), and its own ``[fem]`` section:
 
 =================  ==========================================================
 ``[fem]`` key      meaning (default)
 =================  ==========================================================
-``model``          "axisymmetric" (default) or "3d" (quarter cylinder)
+``model``          "axisymmetric", "3d" (quarter cylinder) or "plane_strain"
+                   (default: plane_strain for a line, else axisymmetric)
 ``element_size``   element size in the contact zone, m (axisymmetric
                    min(a_est/24, H/4); 3d min(a_est/8, H/2))
 ``contact_zone``   radius of the refined candidate contact zone, m (1.4 a_est)
 ``domain_radius``  lateral extent of the layer, m (contact_zone + 8 H)
+``upstream``       plane strain: length ahead (inflow), m
+``downstream``     plane strain: length behind (outflow), m
 ``far_size``       largest element size, m (H/2 axisymmetric, H in 3d)
 ``grading``        size growth with distance from the zone, - (0.3)
 ``refine``         uniform refinements of the gmsh mesh (nested levels), (0)
