@@ -45,8 +45,8 @@ def main(argv: list[str] | None = None) -> int:
                         help="how long to wait for --scheduler to answer (default 10)")
     parser.add_argument("--workers", type=int, metavar="N",
                         help="workers of the local cluster (default: the machine's cores)")
-    parser.add_argument("--cache", type=Path, help="kernel cache folder (default out/sweeps/kernel-cache)")
-    parser.add_argument("--no-cache", action="store_true", help="neither read nor write cached kernels")
+    parser.add_argument("--cache", type=Path, help="cache folder: kernel sets and finished points (default out/sweeps/kernel-cache)")
+    parser.add_argument("--no-cache", action="store_true", help="neither read nor write the cache")
     parser.add_argument("--keep-failed", action="store_true",
                         help="keep the points an earlier run recorded as failed (default: compute them again)")
     parser.add_argument("--no-plots", action="store_true", help="no PNG plots")
