@@ -10,10 +10,15 @@ Usage: ``python benchmarks/bem_plane_strain.py [--per-b0 N] [--depth H_OVER_B0] 
   pressure RMS, against :func:`verification.analytic.hunter_rolling_contact`; the grid is
   ``a = b0 / N`` (default N = 100.37, not commensurate with the contact), period 3 H,
   ``N_t = L / (2 a)``.
+
+Dense contact solves of a few hundred nodes are BLAS-bound: on a loaded 2-core machine a
+multi-threaded BLAS spins (a 300-node solve took 0.16 s instead of 7 ms); run with
+``OPENBLAS_NUM_THREADS=1`` for stable figures (the first line says which).
 """
 
 import argparse
 import math
+import os
 import time
 
 import numpy as np
@@ -32,7 +37,8 @@ args = ap.parse_args()
 
 G0, TAU, F, R, B0 = 1e6, 1.0, 2.0, 1.0, 1e-3
 P = math.pi * G0 * B0**2 / R
-print(machine())
+print(machine(), "| OPENBLAS_NUM_THREADS =", os.environ.get("OPENBLAS_NUM_THREADS", "unset"),
+      "| load average", " ".join(f"{v:.1f}" for v in os.getloadavg()))
 
 
 def grid(H):
