@@ -34,11 +34,18 @@ __all__ = ["LinePreconditioner"]
 class LinePreconditioner:
     """Block-Jacobi preconditioner by grid rows for :class:`SetSystem`.
 
-    Use :meth:`attach` for each new system: it builds (or reuses) the inverse of each
-    line's block and sets ``system.precondition``. The inverses are applied as batched
-    matrix products, lines grouped by size (padded to a multiple of ``pad`` nodes), so a
-    GMRES iteration costs a few BLAS calls, not one call per line. ``factorised`` counts
-    the blocks inverted.
+    Each line's block is taken without the layer's normal-tangential coupling (the
+    ``C_wu, C_wv`` blocks in the gap rows and ``C_uw, C_vw`` in the slip-velocity rows)
+    and solved block-triangularly: the normal forces from the gap rows, then the
+    tangential forces from their rows less the slip nodes' ``mu N``. Against the full
+    ``3 m x 3 m`` block this costs a third of the inversion (``m^3 + (2 m)^3``) and a
+    half of the memory, for about 15 % more GMRES iterations (section 11 at 129 x 129:
+    577 against 504 in all).
+
+    Use :meth:`attach` for each new system: it builds (or reuses) the inverses and sets
+    ``system.precondition``. The inverses are applied as batched matrix products, lines
+    grouped by size (padded to a multiple of ``pad`` nodes), so a GMRES iteration costs a
+    few BLAS calls, not one call per line. ``factorised`` counts the lines inverted.
     """
 
     def __init__(self, pad: int = 8):
@@ -55,41 +62,46 @@ class LinePreconditioner:
         lines = np.split(np.arange(nC), cuts)
         slip_pos = np.full(nC, -1)
         slip_pos[system.B] = np.arange(system.B.size)
-        cache, groups, keys, keys_of = {}, {}, [], {}
+        cache, groups, keys = {}, {}, []
         for J in lines:
             st = system.stick[J]
             key = system.C[J].tobytes() + st.tobytes()
             keys.append(key)
-            inv = self._cache.get(key)
-            if inv is None:
-                inv = np.linalg.inv(self._local(system, J, st, slip_pos))
+            pair = self._cache.get(key)
+            if pair is None:
+                pair = self._inverses(system, J, st, slip_pos)
                 self.factorised += 1
-            cache[key] = inv
-            keys_of[id(inv)] = key
+            cache[key] = pair
             size = -(-J.size // self.pad) * self.pad
-            groups.setdefault(size, []).append((J, inv))
-        self._cache = cache
+            groups.setdefault(size, []).append((J, key, pair))
         whole = b"|".join(keys)
         batches = self._batches[1] if self._batches[0] == whole else []
         for size, members in (groups.items() if not batches else ()):
-            idx = np.full((len(members), 3 * size), n)  # padding reads and writes slot n
-            stack = np.zeros((len(members), 3 * size, 3 * size))
-            for b, (J, inv) in enumerate(members):
-                m3 = 3 * J.size
-                idx[b, :m3] = np.concatenate([J, nC + J, 2 * nC + J])
-                stack[b, :m3, :m3] = inv
-                cache[keys_of[id(inv)]] = stack[b, :m3, :m3]  # a view: one copy in memory
-            batches.append((idx, stack))
+            L = len(members)
+            idx_n, idx_t = np.full((L, size), n), np.full((L, 2 * size), n)  # padding: slot n
+            inv_n, inv_t = np.zeros((L, size, size)), np.zeros((L, 2 * size, 2 * size))
+            coup = np.zeros((L, 2 * size))  # -mu diag on the slip nodes' e . S rows
+            for b, (J, key, (a_n, a_t, c)) in enumerate(members):
+                m = J.size
+                idx_n[b, :m] = J
+                idx_t[b, :2 * m] = np.concatenate([nC + J, 2 * nC + J])
+                inv_n[b, :m, :m], inv_t[b, :2 * m, :2 * m], coup[b, :m] = a_n, a_t, c
+                cache[key] = (inv_n[b, :m, :m], inv_t[b, :2 * m, :2 * m], coup[b, :m])  # views: one copy
+            batches.append((idx_n, idx_t, inv_n, inv_t, coup))
+        self._cache = cache
         self._batches = (whole, batches)
         om_step = 1.0 / system.ax  # the inverse of the scaled Omega's stick-row coefficient
         ext = np.zeros(n + 1)
 
         def precondition(r):
             ext[:n] = r
-            ext[n] = 0.0
             out = np.empty(n + 1)
-            for idx, stack in batches:
-                out[idx] = np.matmul(stack, ext[idx][:, :, None])[:, :, 0]
+            for idx_n, idx_t, inv_n, inv_t, coup in batches:
+                N = np.matmul(inv_n, ext[idx_n][:, :, None])[:, :, 0]
+                rt = ext[idx_t]
+                rt[:, :N.shape[1]] -= coup[:, :N.shape[1]] * N
+                out[idx_n] = N
+                out[idx_t] = np.matmul(inv_t, rt[:, :, None])[:, :, 0]
             if system.free_d:
                 out[system.iD] = r[system.iD]
             if system.free_om:
@@ -99,11 +111,16 @@ class LinePreconditioner:
         system.precondition = precondition
 
     @staticmethod
-    def _local(system: SetSystem, J, stick, slip_pos):
-        """The system's rows and columns of the forces of contact positions ``J``."""
+    def _inverses(system: SetSystem, J, stick, slip_pos):
+        """The inverses of the line's normal and tangential blocks and the slip nodes'
+        coupling ``-mu diag`` (0 on stick nodes) of contact positions ``J``."""
         gap, Dx, Dy = system.blocks(J, J)
-        p = slip_pos[J[~stick]]
         m = J.size
+        Dx[:, :m] = 0.0
+        Dy[:, :m] = 0.0
+        p = slip_pos[J[~stick]]
         eye = np.eye(3 * m)
-        return force_rows(stick, system.dir_x[p], system.dir_y[p], system.slope[p], system.setup.mu, system.diag,
-                          gap, Dx, Dy, eye[:m], eye[m:2 * m], eye[2 * m:])
+        M = force_rows(stick, system.dir_x[p], system.dir_y[p], system.slope[p], system.setup.mu, system.diag,
+                       gap, Dx, Dy, eye[:m], eye[m:2 * m], eye[2 * m:])
+        coup = np.where(stick, 0.0, -system.setup.mu * system.diag)
+        return np.linalg.inv(gap[:, :m]), np.linalg.inv(M[m:, m:]), coup

@@ -40,7 +40,7 @@ class SetState:
     direction : ndarray, shape ``(nodes, 2)``
         Slip direction ``e`` (unit, -) of the force on slip nodes; 0 elsewhere.
     slope : ndarray
-        Slip-law slope ``k = (e . w) / |S|`` (m/(s N)) on slip nodes; 0 elsewhere.
+        Slip-law slope ``k`` (m/(s N)) of the slip rows on slip nodes; 0 elsewhere.
     """
 
     contact: np.ndarray

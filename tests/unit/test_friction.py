@@ -248,17 +248,19 @@ def test_matrix_free_product_equals_the_dense_system(kernels, load, indentation,
 
 def test_line_preconditioner_inverts_a_contact_on_one_grid_row(kernels):
     """With every contact node on one grid row (stick and slip mixed; Omega and d given,
-    so no global unknowns), the line preconditioner is the exact inverse: M A x = x
-    (the inverse of the running sum, the displacement ahead of each run and the slip rows
-    are all in the line's block). On two rows it is not (the rows' coupling is left out)."""
+    so no global unknowns) and the layer's normal-tangential coupling blocks set to zero
+    (the preconditioner leaves them out), the line preconditioner is the exact inverse:
+    M A x = x (the inverse of the running sum, the displacement ahead of each run and the
+    slip rows are all in the line's block). With the coupling, or on two rows, it is not."""
     from bem.frictional.preconditioner import LinePreconditioner
 
     Ky, Kx = GRID.shape
     row = (Ky // 2) * Kx + np.arange(Kx // 2 - 6, Kx // 2 + 6)
     two = np.concatenate([row, row + Kx])
+    uncoupled = {b: (np.zeros_like(k) if b in ("wu", "wv", "uw", "vw") else k) for b, k in kernels.items()}
     x = np.random.default_rng(7).normal(size=3 * two.size)
-    for nodes, exact in ((row, True), (two, False)):
-        system, C = _system(kernels, None, 1e-4, 2.4, contact=nodes)
+    for kern, nodes, exact in ((uncoupled, row, True), (kernels, row, False), (uncoupled, two, False)):
+        system, C = _system(kern, None, 1e-4, 2.4, contact=nodes)
         assert 0 < system.A.size < C.size
         LinePreconditioner().attach(system)
         y = x[:system.n]
