@@ -30,7 +30,8 @@ class Loading:
     speed : float
         ``V`` (m/s) of the indenter in ``+x``, ``>= 0`` (0: stationary contact).
     load : float, optional
-        ``P`` (N), load control.
+        ``P`` (N), load control; per unit length (N/m) for a line contact
+        (:class:`bem.indenters.LineCylinder`, plane strain).
     indentation : float, optional
         ``d`` (m), displacement control. Exactly one of ``load`` and ``indentation``.
     """
