@@ -6,7 +6,8 @@ V = 0.01 m/s (V tau_1 / b = 1.9, near the loss peak), no inertia.
 
 ``.venv/bin/python benchmarks/fem_rolling_2d.py``: one solve at the default
 discretization, timed (stages from the solver record).
-``... --convergence``: three nested meshes (h0 = 1e-4 m = b/6, refined once and twice),
+``... --convergence [h0]``: three nested meshes (h0 = 1e-4 m = b/6 by default, refined
+once and twice),
 the change of R_r, edges, indentation and energy balance between them, and the
 Richardson estimate where the sequence is monotone (else the spread is the estimate).
 ``... --lengths``: R_r with the upstream and downstream lengths changed.
@@ -31,7 +32,8 @@ def solve(**fem):
 def line(res, t, label):
     return (f"{label:>22s}: {res.mesh.unknowns:7d} unknowns {t:7.1f} s  R_r {res.rolling_resistance:.6f} N/m  "
             f"edges [{res.trailing_edge * 1e3:.5f}, {res.leading_edge * 1e3:.5f}] mm  "
-            f"d {res.indentation * 1e6:.5f} um  energy balance {res.energy_balance:+.3%}")
+            f"d {res.indentation * 1e6:.5f} um  energy balance {res.energy_balance:+.3%}  "
+            f"D/V {res.rolling_resistance_energy:.6f} N/m")
 
 
 def richardson(values, ratio=2.0):
@@ -48,10 +50,11 @@ def richardson(values, ratio=2.0):
 
 if __name__ == "__main__":
     if "--convergence" in sys.argv:
-        runs = [solve(element_size=1e-4, refine=k) for k in range(3)]
+        h0 = float(sys.argv[sys.argv.index("--convergence") + 1]) if len(sys.argv) > 2 else 1e-4
+        runs = [solve(element_size=h0, refine=k) for k in range(3)]
         for (res, t), k in zip(runs, range(3)):
-            print(line(res, t, f"h = {1e-4 / 2 ** k:.2e} m"))
-        for name in ("rolling_resistance", "leading_edge", "trailing_edge", "indentation",
+            print(line(res, t, f"h = {h0 / 2 ** k:.2e} m"))
+        for name in ("rolling_resistance", "rolling_resistance_energy", "leading_edge", "trailing_edge", "indentation",
                      "contact_length"):
             vals = [getattr(r, name) for r, _ in runs]
             est, order = richardson(vals)

@@ -218,7 +218,7 @@ SCHEMA: tuple = (
                 default_doc="plane_strain for a line indenter, axisymmetric otherwise"),
             Key("element_size", "number", "m", "element size in the contact zone", ("fem",), rule=">0",
                 default_doc="axisymmetric min(a_est/24, H/4), 3d min(a_est/8, H/2), plane_strain "
-                            "min(b_est/20, H/8) (b_est: the relaxed half-width)"),
+                            "min(b_est/30, H/8) (b_est: the relaxed half-width)"),
             Key("contact_zone", "number", "m", "radius (plane strain: half-width) of the refined candidate "
                 "contact zone", ("fem",), rule=">0", default_doc="1.4 a_est; plane_strain 1.5 b_est"),
             Key("domain_radius", "number", "m", "lateral extent of the truncated layer (not plane_strain)",

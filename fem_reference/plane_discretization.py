@@ -84,7 +84,7 @@ def resolve_plane(problem: ContactProblem) -> PlaneDiscretization:
     fem = problem.fem
     H = problem.layer.thickness
     b = estimate_half_width(problem)
-    h = fem.element_size or min(b / 20.0, H / 8.0)
+    h = fem.element_size or min(b / 30.0, H / 8.0)
     zone = fem.contact_zone or 1.5 * b
     lv = creep_length(problem)
     near = max(H, b)

@@ -56,6 +56,11 @@ class RollingResult:
         leading_edge - trailing_edge (m).
     peak_pressure : float
         Largest nodal contact pressure (Pa).
+    rolling_resistance_energy : float
+        dissipation / V (N/m): the rolling resistance from the energy balance (the BEM's
+        ``rolling_resistance_energy``); a bulk integral, it converges smoothly with the
+        mesh where the pressure moment R_r carries the contact discretization's
+        wobble (docs/derivations.md section 7). nan at rest.
     dissipation : float
         Power dissipated by the dashpots, integrated over the layer (W/m): the branch
         stresses times the dashpot strain rates, sum_i int 2 G_i (eps - eps_v,i) :
@@ -99,6 +104,11 @@ class RollingResult:
         return self.leading_edge - self.trailing_edge
 
     @property
+    def rolling_resistance_energy(self) -> float:
+        """dissipation / V (N/m); nan at rest."""
+        return self.dissipation / self.speed if self.speed > 0 else float("nan")
+
+    @property
     def energy_balance(self) -> float:
         """dissipation / pressure_power - 1 (-); nan when no power goes in."""
         if self.pressure_power == 0:
@@ -107,13 +117,15 @@ class RollingResult:
 
     def summary(self) -> Dict[str, Any]:
         """Scalars, mesh and solver record as a JSON-ready dict (SI units; energy_balance
-        None when undefined)."""
+        and rolling_resistance_energy None when undefined)."""
         eb = self.energy_balance
+        rre = self.rolling_resistance_energy
         return {
             "speed": self.speed,
             "load": self.load,
             "indentation": self.indentation,
             "rolling_resistance": self.rolling_resistance,
+            "rolling_resistance_energy": None if not np.isfinite(rre) else rre,
             "pressure_centroid_x": self.pressure_centroid,
             "leading_edge": self.leading_edge,
             "trailing_edge": self.trailing_edge,

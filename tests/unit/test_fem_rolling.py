@@ -106,6 +106,7 @@ def test_cli_rolls_a_line_case(tmp_path, capsys):
     assert out["rolling_resistance"] > 0 and out["leading_edge"] > -out["trailing_edge"] > 0
     assert abs(out["energy_balance"]) < 0.02
     assert out["rolling_resistance"] * 0.01 == pytest.approx(out["pressure_power"], rel=2e-3)
+    assert out["rolling_resistance_energy"] == pytest.approx(out["dissipation"] / 0.01, rel=1e-12)
     # a table has no time-domain form; a speed above c_s is named with its setting
     assert main(["solve", str(case), "--quiet", "--set", "loading.speed=60.0"]) == 2
     assert "shear-wave speed c_s = sqrt(G_inf / rho)" in capsys.readouterr().err
