@@ -33,7 +33,8 @@ plus the friction power ``sum S . w`` plus ``V sum N (arm - dh/dx)``, which vani
 the rolling arm is the profile slope (paraboloid) and is ``O(r^2/R^2)`` of ``R_r`` for the
 exact sphere (the small-slope theory's own inconsistency; see :mod:`bem.energy`).
 
-Solver: :mod:`bem.rolling` (Kalker's active set on contact, stick and slip sets).
+Solver: the package :mod:`bem.frictional` (Kalker's active set on contact, stick and slip sets;
+entry point :func:`bem.solve_friction`).
 """
 
 from __future__ import annotations
@@ -89,7 +90,9 @@ class Friction:
         ``|sin|`` of the angle between ``S`` and ``w`` (-), > 0.
     dense_limit : int
         Largest linear system (unknowns, three per contact node) solved by dense LU; larger
-        ones use GMRES with FFT products and an FFT preconditioner (``O(N)`` memory), >= 0.
+        ones use GMRES with FFT products, preconditioned by exact solves on each grid row of
+        contact nodes (:mod:`bem.frictional.preconditioner`), >= 0. The frictionless start
+        is solved densely up to ``dense_limit // 3`` contact nodes.
     set_tol : float
         When the stick/slip sets alternate between two states (a node on the stick/slip
         border of the discrete problem), the state is accepted if a stick node exceeds the

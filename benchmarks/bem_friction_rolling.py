@@ -16,12 +16,23 @@ Printed per case: kernels (s), the frictionless solve of the same grid (s), the 
 solve (s) and its parts (coarse-grid start, fine active set), active-set and GMRES
 iterations, the result (creep force, stick fraction, R_r) and the peak RSS.
 
+``--old REV`` solves each case with the frictional solver of git revision ``REV`` as
+well (its ``bem/rolling.py``, loaded from ``git show``; the rest of ``bem`` is today's), right
+after today's, and prints both and whether they end on the same state (contact and stick
+sets, forces relative to the largest): a paired comparison on a shared machine.
+
 Run: ``.venv/bin/python benchmarks/bem_friction_rolling.py [--case contact|section11|all]
-[--spacing 0.2e-3 0.1e-3] [--nodes 129 257] [--repeat 1]``.
+[--spacing 0.2e-3 0.1e-3] [--nodes 129 257] [--repeat 1] [--old 703d952]``.
 """
 
 import argparse
+import importlib.util
+import subprocess
+import tempfile
 import time
+from pathlib import Path
+
+import numpy as np
 
 from _common import LAYER, machine, peak_rss_mb
 
@@ -53,8 +64,34 @@ def section11_case(nodes: int | None):
     return Problem(LAYER, Sphere(0.02), grid, Loading(0.05, load=150.0)), Friction(0.2)
 
 
-def run(label: str, problem: Problem, friction: Friction, repeat: int, verbose: bool) -> dict:
-    kernels, kernel_s = compute_kernels(problem, BLOCKS)
+def old_solver(rev: str):
+    """``solve_friction`` of ``bem/rolling.py`` at git revision ``rev``."""
+    root = Path(__file__).resolve().parent.parent
+    text = subprocess.run(["git", "show", f"{rev}:bem/rolling.py"], cwd=root, check=True, capture_output=True,
+                          text=True).stdout
+    text = text.replace("from .", "from bem.")
+    path = Path(tempfile.mkdtemp()) / "old_rolling.py"
+    path.write_text(text)
+    spec = importlib.util.spec_from_file_location("old_rolling", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module.solve_friction
+
+
+def compare(new, old) -> str:
+    same = np.array_equal(new.contact, old.contact) and np.array_equal(new.stick, old.stick)
+    scale = old.force.max()
+    diff = max(float(np.abs(a - b).max()) for a, b in ((new.force, old.force), (new.force_x, old.force_x),
+                                                         (new.force_y, old.force_y))) / scale
+    return f"same contact and stick sets: {same}; forces differ by {diff:.1e} of the largest"
+
+
+def run(label: str, problem: Problem, friction: Friction, repeat: int, verbose: bool, solver=solve_friction,
+        kernels=None) -> dict:
+    if kernels is None:
+        kernels, kernel_s = compute_kernels(problem, BLOCKS)
+    else:
+        kernels, kernel_s = kernels
     X, Y = problem.grid.coordinates()
     profile = problem.indenter.profile(X, Y)
     op = ComplianceOperator(problem.grid, kernels["ww"])
@@ -72,7 +109,7 @@ def run(label: str, problem: Problem, friction: Friction, repeat: int, verbose: 
                 print("   ", lines[-1], flush=True)
 
         t0 = time.perf_counter()
-        res, _ = solve_friction(problem, friction, kernels=kernels, energy=False, progress=progress)
+        res, _ = solver(problem, friction, kernels=kernels, energy=False, progress=progress)
         times.append(time.perf_counter() - t0)
     times.sort()
     solve_s = times[len(times) // 2]
@@ -92,7 +129,24 @@ def run(label: str, problem: Problem, friction: Friction, repeat: int, verbose: 
     coarse = [ln for ln in lines if "coarse" in ln]
     if coarse:
         print(f"  coarse start done at {coarse[-1].split(' s')[0].strip()} s")
-    return {"kernel_s": kernel_s, "normal_s": normal_s, "solve_s": solve_s, "result": res}
+    return {"kernel_s": kernel_s, "normal_s": normal_s, "solve_s": solve_s, "result": res,
+            "kernels": (kernels, kernel_s)}
+
+
+def paired(label, problem, friction, args):
+    new = run(label, problem, friction, args.repeat, args.verbose)
+    if args.old:
+        t0 = time.perf_counter()
+        try:
+            old = run(label + f" [solver of {args.old}]", problem, friction, args.repeat, args.verbose,
+                      solver=old_solver(args.old), kernels=new["kernels"])
+        except Exception as exc:  # noqa: BLE001 - the old solver's failure is a result here
+            print(f"  the solver of {args.old} failed after {time.perf_counter() - t0:.1f} s: "
+                  f"{type(exc).__name__}: {exc}", flush=True)
+            return
+        print(f"  new against {args.old}: {compare(new['result'], old['result'])}; "
+              f"solve {old['solve_s']:.2f} s -> {new['solve_s']:.2f} s ({old['solve_s'] / new['solve_s']:.1f}x)",
+              flush=True)
 
 
 if __name__ == "__main__":
@@ -102,12 +156,13 @@ if __name__ == "__main__":
     ap.add_argument("--nodes", type=int, nargs="*", default=[129, 257])
     ap.add_argument("--repeat", type=int, default=1)
     ap.add_argument("--verbose", action="store_true")
+    ap.add_argument("--old", metavar="REV", help="also solve with the frictional solver of this git revision")
     args = ap.parse_args()
     print(machine())
     if args.case in ("contact", "all"):
         for a in args.spacing:
-            run(f"issue 11 case (CONTACT), spacing {a * 1e3:g} mm", *contact_case(a), args.repeat, args.verbose)
+            paired(f"issue 11 case (CONTACT), spacing {a * 1e3:g} mm", *contact_case(a), args)
     if args.case in ("section11", "all"):
-        run("section 11 with friction", *section11_case(None), args.repeat, args.verbose)
+        paired("section 11 with friction", *section11_case(None), args)
         for n in args.nodes:
-            run("section 11 with friction", *section11_case(n), args.repeat, args.verbose)
+            paired("section 11 with friction", *section11_case(n), args)

@@ -304,3 +304,13 @@ def test_coarse_grid_start_ends_on_the_same_state(monkeypatch):
     assert np.array_equal(coarse.stick, direct.stick) and np.array_equal(coarse.contact, direct.contact)
     np.testing.assert_allclose(coarse.force_x, direct.force_x, rtol=0, atol=1e-9 * direct.force.max())
     assert abs(coarse.rolling_resistance - direct.rolling_resistance) < 1e-10 * direct.rolling_resistance
+
+
+def test_a_solve_out_of_iterations_says_what_to_change(kernels):
+    """Mode omega (no continuation): running out of active-set iterations raises
+    FrictionNotConverged naming the setting to change, never a silent result."""
+    from bem.friction import FrictionNotConverged
+
+    with pytest.raises(FrictionNotConverged, match=r"raise friction\.max_iter or friction\.direction_tol"):
+        solve_friction(problem(), Friction(0.2, "omega", omega=0.99 * V / 0.02, max_iter=1), kernels=kernels,
+                       energy=False)
