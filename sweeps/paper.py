@@ -194,7 +194,7 @@ def findings(load_rows: list[dict], thickness_rows: list[dict], speed_rows: list
 
 def run_quick(out: str | Path, root: str | Path = ".", client=None, cache: str | Path | None = None,
               y: str = "rolling_resistance_energy") -> dict:
-    """Run the :data:`QUICK` sweeps (coarse grids, about 50 frictional points) into
+    """Run the :data:`QUICK` sweeps (coarse grids, 40 frictional points) into
     ``out/<name>`` on ``client`` (default a local cluster, started once for the three)
     and return their :func:`findings`."""
     from .engine import connect, run_sweep
