@@ -12,7 +12,7 @@ from ..metrics import fit_contact_radius
 from ..results import Level, Run
 from ..schema import CaseError, Field, check_table
 
-__all__ = ["FIELDS", "check", "run", "solve"]
+__all__ = ["FIELDS", "check", "run", "run_line", "solve"]
 
 FIELDS = {
     "element_sizes": Field("numbers", True, positive=True, doc="element sizes at the contact (m), coarse to fine"),
@@ -57,6 +57,25 @@ def run(problem_cfg: dict, settings: dict, size: float) -> Run:
     return Run("fem", size, scalars, np.asarray(res.radius), np.asarray(res.pressure), seconds)
 
 
+def run_line(problem_cfg: dict, settings: dict, size: float) -> Run:
+    """The plane-strain steady-rolling FEM (a line contact, per unit length) with element
+    size ``size`` (m) at the contact; ``Run.r`` holds the signed ``x`` of the pressure
+    samples (m, ``x > 0`` ahead), scalars per unit length (N/m, W/m)."""
+    import fem_reference as fr
+    from fem_reference.case import problem_from_dict
+
+    problem = problem_from_dict({**problem_cfg, "fem": {**settings, "element_size": size}})
+    t = time.perf_counter()
+    res = fr.solve(problem)
+    seconds = time.perf_counter() - t
+    scalars = {q: float(getattr(res, q)) for q in ("rolling_resistance", "indentation", "leading_edge",
+                                                   "trailing_edge", "peak_pressure", "load", "dissipation")}
+    return Run("fem", size, scalars, np.asarray(res.pressure_x), np.asarray(res.pressure), seconds)
+
+
 def solve(problem: dict, level: Level) -> Run:
-    """The method protocol: the case's ``[problem]`` at one level of ``[fem] element_sizes``."""
+    """The method protocol: the case's ``[problem]`` at one level of ``[fem] element_sizes``
+    (steady rolling in plane strain for ``[indenter] shape = "line"``)."""
+    if problem["indenter"].get("shape") == "line":
+        return run_line(problem, level.settings, level.size)
     return run(problem, level.settings, level.size)
