@@ -104,6 +104,22 @@ class RollingResult:
         return self.leading_edge - self.trailing_edge
 
     @property
+    def contact_radius(self) -> float:
+        """Half the contact length, (leading - trailing) / 2 (m): the half-width b (the
+        BEM's ``contact_radius`` of a line contact)."""
+        return 0.5 * self.contact_length
+
+    @property
+    def half_width(self) -> float:
+        """The same as :attr:`contact_radius` (m)."""
+        return self.contact_radius
+
+    @property
+    def contact_centre(self) -> float:
+        """(leading + trailing) / 2 (m): the offset of the contact's middle from the axis."""
+        return 0.5 * (self.leading_edge + self.trailing_edge)
+
+    @property
     def rolling_resistance_energy(self) -> float:
         """dissipation / V (N/m); nan at rest."""
         return self.dissipation / self.speed if self.speed > 0 else float("nan")
@@ -130,6 +146,9 @@ class RollingResult:
             "leading_edge": self.leading_edge,
             "trailing_edge": self.trailing_edge,
             "contact_length": self.contact_length,
+            "contact_radius": self.contact_radius,
+            "half_width": self.half_width,
+            "contact_centre": self.contact_centre,
             "peak_pressure": self.peak_pressure,
             "dissipation": self.dissipation,
             "pressure_power": self.pressure_power,
