@@ -112,15 +112,17 @@ class LinePreconditioner:
 
     @staticmethod
     def _inverses(system: SetSystem, J, stick, slip_pos):
-        """The inverses of the line's normal and tangential blocks and the slip nodes'
-        coupling ``-mu diag`` (0 on stick nodes) of contact positions ``J``."""
-        gap, Dx, Dy = system.blocks(J, J)
+        """The inverses of the line's normal block (``C_ww``) and tangential block (the
+        ``x, y`` rows in ``S_x, S_y``, without ``C_uw, C_vw``) and the slip nodes'
+        coupling ``-mu diag`` (0 on stick nodes), for contact positions ``J``."""
+        ops, ax = system.ops, system.ax
+        c = system.C[J]
         m = J.size
-        Dx[:, :m] = 0.0
-        Dy[:, :m] = 0.0
+        Dx = ax * np.hstack([ops.dense("duu", c, c), ops.dense("duv", c, c)])
+        Dy = ax * np.hstack([ops.dense("dvu", c, c), ops.dense("dvv", c, c)])
         p = slip_pos[J[~stick]]
-        eye = np.eye(3 * m)
-        M = force_rows(stick, system.dir_x[p], system.dir_y[p], system.slope[p], system.setup.mu, system.diag,
-                       gap, Dx, Dy, eye[:m], eye[m:2 * m], eye[2 * m:])
+        eye, zero = np.eye(2 * m), np.zeros((m, 2 * m))
+        T = force_rows(stick, system.dir_x[p], system.dir_y[p], system.slope[p], system.setup.mu, system.diag,
+                       zero, Dx, Dy, zero, eye[:m], eye[m:])[m:]
         coup = np.where(stick, 0.0, -system.setup.mu * system.diag)
-        return np.linalg.inv(gap[:, :m]), np.linalg.inv(M[m:, m:]), coup
+        return np.linalg.inv(ops.dense("ww", c, c)), np.linalg.inv(T), coup
