@@ -65,16 +65,20 @@ def load_case(path: Path, known: dict | None = None) -> dict:
     if not isinstance(kind_name, str) or kind_name not in KINDS:
         raise CaseError(f"{path} kind: unknown kind {kind_name!r}; known: {', '.join(KINDS)}{close(kind_name, KINDS)}")
     kind = KINDS[kind_name]
-    fields = {**HEADER, **{s: None for s in kind.SECTIONS}}
+    header = dict(HEADER)
+    if not getattr(kind, "NEEDS_PROBLEM", True):
+        header.pop("problem")
+    fields = {**header, **{s: None for s in kind.SECTIONS}}
     for key in case:
         if key not in fields:
             raise CaseError(f"{path}: unknown key or section {key!r}; known for a {kind_name} case: "
                             f"{', '.join(fields)}{close(key, fields)}")
-    check_table({k: v for k, v in case.items() if k in HEADER}, HEADER, str(path))
+    check_table({k: v for k, v in case.items() if k in header}, header, str(path))
     if case["name"] != path.stem:
         raise CaseError(f"{path} name: {case['name']!r} must be the file's name {path.stem!r} "
                         "(the command line and the results files find a case by it)")
-    case["problem"] = check_problem(case["problem"], path)
+    if "problem" in header:
+        case["problem"] = check_problem(case["problem"], path)
     for i, gate in enumerate(case["gates"]):
         check_table(gate, GATE, f"{path} gates[{i}]")
     methods = _methods_of(case, path, known)

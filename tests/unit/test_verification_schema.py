@@ -205,8 +205,9 @@ def mutations(draw):
         path, value = draw(st.sampled_from(list(_leaves(case))))
         _at(case, path[:-1])[path[-1]] = draw(st.sampled_from(_wrong_type(value)))
     else:
-        required = ["problem", "gates", "kind", "name", "title"]
-        required += [s for s in ("bem", "fem", "analytic", "sweep", "table1", "limits") if s in case]
+        required = ["problem", "gates", "kind", "name", "title", "bem", "fem", "analytic", "sweep", "table1",
+                    "limits", "speeds", "sweeps"]
+        required = [s for s in required if s in case]
         section = draw(st.sampled_from(required))
         del case[section]
     return name, how, case
