@@ -245,6 +245,15 @@ class ContactProblem:
                              "by the axisymmetric or 3d model")
         if model != self.fem.model:
             object.__setattr__(self, "fem", replace(self.fem, model=model))
+        unused = (("domain_radius", "upstream and downstream"),) if line else \
+            (("upstream", "domain_radius"), ("downstream", "domain_radius"))
+        for name, instead in unused:
+            if getattr(self.fem, name) is not None:
+                raise InputError(f"fem.{name} is not used by the {model} model; remove it "
+                                 f"(the {model} model's extent is fem.{instead.replace(' and ', ' and fem.')})")
+        if line and self.fem.solver != "direct":
+            raise InputError(f"fem.solver = {self.fem.solver!r}: the plane-strain rolling system is "
+                             "not symmetric and is solved by sparse LU only; use fem.solver = \"direct\"")
         if not line:
             if not isinstance(self.material, ElasticMaterial):
                 raise InputError(

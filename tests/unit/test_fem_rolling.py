@@ -52,6 +52,12 @@ def test_three_parameter_solid_is_the_one_branch_prony_series():
     (lambda: fr.ContactProblem(fr.Layer(H), fr.ElasticMaterial(G0), fr.Indenter("sphere", R),
                                fr.Loading(load=P), fr.FemSettings(model="plane_strain")),
      "fem.model = 'plane_strain' does not fit indenter.shape = 'sphere'"),
+    (lambda: _problem(fr.ElasticMaterial(G0), 0.0, fr.FemSettings(domain_radius=0.01)),
+     "fem.domain_radius is not used by the plane_strain model; remove it (the plane_strain model's "
+     "extent is fem.upstream and fem.downstream)"),
+    (lambda: fr.ContactProblem(fr.Layer(H), fr.ElasticMaterial(G0), fr.Indenter("sphere", R),
+                               fr.Loading(load=P), fr.FemSettings(upstream=0.01)),
+     "fem.upstream is not used by the axisymmetric model"),
 ])
 def test_bad_rolling_input_is_refused_by_name(make, message):
     with pytest.raises(fr.InputError) as info:
