@@ -41,8 +41,9 @@ def test_upwind_difference_of_a_quadratic_is_the_slope_half_a_step_upstream():
     assert dt.shape == f.shape
 
 
-def test_upwind_field_accepts_lists():
-    np.testing.assert_allclose(upwind_field([[0.0, 1.0, 4.0]], 0.5), [[2.0, 6.0, 6.0]], rtol=0, atol=1e-15)
+def test_upwind_field_accepts_lists_of_integers():
+    """A nodal field given as integers is differenced in floating point (no truncation)."""
+    np.testing.assert_allclose(upwind_field([[0, 1, 4]], 0.3), [[1 / 0.3, 3 / 0.3, 3 / 0.3]], rtol=1e-15, atol=0)
 
 
 def test_differenced_kernel_applied_is_the_difference_of_the_applied_kernel():
@@ -67,7 +68,8 @@ def test_indenter_radius_override_then_own_radius_then_error():
     r = indenter_radius(Sphere(0.02), 1)
     assert r == 1.0 and type(r) is float
     x = np.linspace(0, 1, 3)
-    with pytest.raises(ValueError, match=r"this indenter has no radius: give friction.radius \(m\)"):
+    with pytest.raises(ValueError, match=r"^this indenter has no radius: give friction\.radius \(m\), the distance "
+                       r"from its axis of rotation to its lowest point$"):
         indenter_radius(HeightMap(x, x, np.zeros((3, 3))))
     assert indenter_radius(HeightMap(x, x, np.zeros((3, 3))), 0.3) == 0.3
     for bad in (0.0, -1.0, math.inf, math.nan):
