@@ -14,6 +14,7 @@ import json
 import math
 import os
 import shutil
+import sys
 import tempfile
 from dataclasses import dataclass
 from pathlib import Path
@@ -252,13 +253,24 @@ def _write_all(results, folder: Path, drifts: list[Drift]) -> None:
         body += [f"<h2>{flags.title}</h2>", _html_table(flags.head, flags.rows)]
     for r in results:
         kind = KINDS.get(r.kind)
-        figs = kind.figures(r, folder) if kind and r.gates and r.gates[0].quantity != "run" else []
+        ran = kind is not None and r.gates and r.gates[0].quantity != "run"
+        figs, tables, broken = [], [], ""
+        try:  # a table or figure that cannot be drawn must not lose the run's verdicts
+            if ran:
+                tables = kind.tables(r)
+                figs = kind.figures(r, folder)
+        except Exception as exc:
+            broken = f"The kind's tables or figures could not be drawn: {type(exc).__name__}: {exc}"
+            print(f"verify: warning: {r.name}: {broken}", file=sys.stderr)
         verdict = "PASS" if r.passed else "FAIL"
         md.append(f"## {r.name}: {verdict}\n\n**{r.title}** ({r.seconds:.1f} s)\n\n{r.why.strip()}\n")
         body.append(f"<h2 id='{html.escape(r.name)}'>{html.escape(r.name)}: <span class='{verdict.lower()}'>{verdict}"
                     f"</span></h2><p><b>{html.escape(r.title)}</b> ({r.seconds:.1f} s)</p>"
                     f"<p>{html.escape(r.why.strip())}</p>")
-        for table in kind.tables(r) if kind else []:
+        if broken:
+            md.append(f"*{broken}*\n")
+            body.append(f"<p><i>{html.escape(broken)}</i></p>")
+        for table in tables:
             md.append(f"**{table.title}**\n\n" + _md_table(table.head, table.rows) + "\n")
             body.append(f"<h3>{html.escape(table.title)}</h3>" + _html_table(table.head, table.rows))
         md.append("**Gates**\n\n" + _md_table(GATE_HEAD, _gate_rows(r)) + "\n")

@@ -147,3 +147,17 @@ def test_a_run_killed_while_solving_leaves_the_previous_report(tmp_path, sig, co
     assert {p.name: p.read_bytes() for p in out.iterdir()} == before
     if sig != signal.SIGKILL:
         assert not list(tmp_path.glob(".out.*"))
+
+
+def test_a_figure_that_cannot_be_drawn_does_not_lose_the_verdicts(tmp_path, monkeypatch, capsys):
+    from verification.kinds import stationary
+
+    def broken(result, folder):
+        raise ValueError("no such format")
+
+    monkeypatch.setattr(stationary, "figures", broken)
+    write_report([_result()], tmp_path / "out")
+    text = (tmp_path / "out" / "report.md").read_text()
+    assert "could not be drawn: ValueError: no such format" in text and "| contact_radius | bem |" in text
+    assert json.loads((tmp_path / "out" / "metrics.json").read_text())["passed"] is True
+    assert "warning: demo" in capsys.readouterr().err

@@ -138,7 +138,7 @@ def tables(result: CaseResult) -> list[Table]:
                          f"{item['gap']:.2%}"))
     out = [Table(f"Fitted laws of {result.extra['y']} (95% intervals)", ("law", "ours", "paper", "largest gap"),
                  tuple(fits))]
-    peaks = tuple((", ".join(f"{k} = {v:g}" for k, v in combo), fmt(V * 1e3)) for combo, V in found["peak_speed"].items())
+    peaks = tuple((", ".join(f"{k} = {v}" for k, v in combo), fmt(V * 1e3)) for combo, V in found["peak_speed"].items())
     if peaks:
         out.append(Table("Speed of the R_r peak (fig. 10; the paper prints no number)", ("sweep", "V_peak (mm/s)"),
                          peaks))
