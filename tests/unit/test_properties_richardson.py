@@ -94,7 +94,7 @@ def test_radius_fit_uses_exactly_the_band_of_three_spacings():
     assert abs(fit_contact_radius(r, gap, contact, s, band=4.0) - rc) > 1e-6
     only_two = np.array([0.0, rc, rc + 0.5 * s, rc + 3.5 * s])  # the second open one on the band edge
     assert abs(fit_contact_radius(only_two, _hertz_gap(only_two, rc), only_two <= rc, s) - rc) < 1e-15
-    with pytest.raises(ValueError, match="fewer than two distinct open radii in the fitting band"):
+    with pytest.raises(ValueError, match="^fewer than two distinct open radii in the fitting band$"):
         fit_contact_radius(only_two, _hertz_gap(only_two, rc), only_two <= rc, s, band=2.9)
 
 
@@ -137,12 +137,12 @@ def test_radius_fit_ignores_open_samples_not_outside_every_contact_sample_and_in
 @pytest.mark.parametrize(
     "r, gap, contact, message",
     [
-        ([0.0, 1.0], [0.0, 1.0], [False, False], "the contact radius needs samples both in and out of contact"),
-        ([0.0, 1.0], [0.0, 0.0], [True, True], "the contact radius needs samples both in and out of contact"),
-        ([0.0, 1.0, 2.0], [0.0, 1.0, 0.0], [False, True, True], "no open sample outside the contact"),
-        ([0.0, 1.0, 2.0], [0.0, 0.0, np.inf], [True, True, False], "no open sample outside the contact"),
-        ([0.0, 1.0, 2.0, 2.0], [0.0, 0.0, 1.0, 1.0], [True, True, False, False], "fewer than two distinct"),
-        ([0.0, 1.0, 2.0, 3.0], [0.0, 0.0, 1.0, 0.5], [True, True, False, False], "the gap does not open outward"),
+        ([0.0, 1.0], [0.0, 1.0], [False, False], "^the contact radius needs samples both in and out of contact$"),
+        ([0.0, 1.0], [0.0, 0.0], [True, True], "^the contact radius needs samples both in and out of contact$"),
+        ([0.0, 1.0, 2.0], [0.0, 1.0, 0.0], [False, True, True], "^no open sample outside the contact$"),
+        ([0.0, 1.0, 2.0], [0.0, 0.0, np.inf], [True, True, False], "^no open sample outside the contact$"),
+        ([0.0, 1.0, 2.0, 2.0], [0.0, 0.0, 1.0, 1.0], [True, True, False, False], "^fewer than two distinct open radii in the fitting band$"),
+        ([0.0, 1.0, 2.0, 3.0], [0.0, 0.0, 1.0, 0.5], [True, True, False, False], "^the gap does not open outward near the contact edge$"),
     ],
 )
 def test_radius_fit_refuses_unusable_data(r, gap, contact, message):
