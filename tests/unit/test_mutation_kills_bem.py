@@ -208,3 +208,53 @@ def test_height_map_validation(x, y, h, message):
 def test_height_map_accepts_zero_and_two_point_tables():
     hm = HeightMap(np.array([0.0, 1.0]), np.array([0.0, 1.0]), np.zeros((2, 2)))
     assert hm.profile(0.5, 0.5) == 0.0
+
+
+def test_single_precision_coordinates_are_computed_in_double():
+    """Coordinates in float32 give the float64 answer for the same (float32) values: the
+    profiles and arms are evaluated in double precision (float32 arithmetic would err by
+    ~1e-7 relative), and a roller's end y = L/2 is decided in double: float32(0.003) is
+    0.0030000000261 > L/2, beyond the end."""
+    R = 0.02
+    X32 = np.array([0.0011, -0.0047, 0.0093], dtype=np.float32)
+    X64 = X32.astype(float)
+    Y32 = np.zeros(3, dtype=np.float32)
+    for body, args32, args64 in (
+        (Cylinder(R, 0.006), (X32, Y32), (X64, Y32.astype(float))),
+        (LineCylinder(R), (X32,), (X64,)),
+    ):
+        np.testing.assert_allclose(body.profile(*args32), body.profile(*args64), rtol=1e-15, atol=0)
+    # (Sphere, Paraboloid and Cylinder return their arm x / R in the dtype of x)
+    np.testing.assert_allclose(LineCylinder(R).rolling_arm(X32), X64 / R, rtol=1e-15, atol=0)
+    end = np.array([np.float32(0.003)])
+    assert float(end[0]) > 0.003
+    assert np.isposinf(Cylinder(R, 0.006).profile(np.array([0.001]), end)[0])
+
+
+def test_height_map_slope_of_a_single_precision_table_is_computed_in_double():
+    x = np.array([-1.0, -0.2, 0.5, 1.5]) * 1e-3
+    y = np.array([0.0, 1.0]) * 1e-3
+    h32 = (np.array([[1.1, 2.3, 0.7, 5.9], [0.3, 0.1, 0.2, 0.9]]) * 1e-4).astype(np.float32)
+    a, b = HeightMap(x, y, h32), HeightMap(x, y, h32.astype(float))
+    q = (np.array([-0.9e-3, 0.1e-3, 1.2e-3]), np.array([0.2e-3, 0.5e-3, 0.9e-3]))
+    np.testing.assert_allclose(a.rolling_arm(*q), b.rolling_arm(*q), rtol=1e-13, atol=0)
+    np.testing.assert_allclose(a.profile(*q), b.profile(*q), rtol=1e-15, atol=0)
+
+
+def test_height_map_on_a_grid_of_nodes():
+    """The solver calls profile and rolling_arm on (K_y, K_x) node arrays: the result has
+    that shape, and equals the plane's height and slope node by node."""
+    x = np.linspace(-2e-3, 2e-3, 5)
+    y = np.linspace(-1e-3, 1e-3, 3)
+    Xt, Yt = np.meshgrid(x, y)
+    hm = HeightMap(x, y, 1e-4 + 0.02 * Xt + 0.01 * Yt + 2e-4)
+    X, Y = np.meshgrid(np.linspace(-1.5e-3, 1.5e-3, 4), np.linspace(-0.5e-3, 0.5e-3, 2))
+    np.testing.assert_allclose(hm.profile(X, Y), 3e-4 + 0.02 * X + 0.01 * Y, rtol=1e-13, atol=0)
+    np.testing.assert_allclose(hm.rolling_arm(X, Y), np.full(X.shape, 0.02), rtol=1e-13, atol=0)
+
+
+@pytest.mark.parametrize("x, y", [([[0.0, 1.0]], [0.0, 1.0]), ([0.0, 1.0], [[0.0, 1.0]])])
+def test_height_map_axes_must_be_one_dimensional(x, y):
+    """A 2-D axis whose size still matches h's shape is refused on its own account."""
+    with pytest.raises(ValueError, match=r"^h must have shape \(len\(y\), len\(x\)\) = \(2, 2\), got \(2, 2\)$"):
+        HeightMap(np.asarray(x), np.asarray(y), np.zeros((2, 2)))
