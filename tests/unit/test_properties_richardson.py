@@ -68,6 +68,7 @@ def test_richardson_on_sequences_without_an_order():
     assert stalled.extrapolated == 1.2 and stalled.error_finest == 0.0
     late = richardson([1.0, 1.0, 1.2])
     assert math.isnan(late.order) and late.extrapolated == 1.2 and abs(late.error_finest - 0.6) < 1e-12
+    assert stalled.asymptotic is False and late.asymptotic is False  # a bool, as documented
     wobble = richardson([1.0, 1.2, 1.1])
     assert math.isnan(wobble.order) and abs(wobble.error_finest - 0.3) < 1e-12
     assert isinstance(wobble, Convergence) and wobble.values == (1.0, 1.2, 1.1)
@@ -143,6 +144,8 @@ def test_radius_fit_ignores_open_samples_not_outside_every_contact_sample_and_in
         ([0.0, 1.0, 2.0], [0.0, 0.0, np.inf], [True, True, False], "^no open sample outside the contact$"),
         ([0.0, 1.0, 2.0, 2.0], [0.0, 0.0, 1.0, 1.0], [True, True, False, False], "^fewer than two distinct open radii in the fitting band$"),
         ([0.0, 1.0, 2.0, 3.0], [0.0, 0.0, 1.0, 0.5], [True, True, False, False], "^the gap does not open outward near the contact edge$"),
+        # open samples touching (gap 0): the line is flat (beta = 0 exactly), no radius
+        ([0.0, 1.0, 2.0, 3.0], [0.0, 0.0, 0.0, 0.0], [True, True, False, False], "^the gap does not open outward near the contact edge$"),
     ],
 )
 def test_radius_fit_refuses_unusable_data(r, gap, contact, message):
@@ -205,3 +208,18 @@ def test_pressure_difference_with_empty_bands_is_nan():
     assert d.max_interior == 0.0
     d = pressure_difference([[1.5]], [[1.0]], lambda r: np.full(np.shape(r), 2.0), 1.0)
     assert math.isnan(d.max_interior) and math.isnan(d.rms_interior) and d.peak_reference == 2.0
+
+
+def test_pressure_difference_evaluates_the_reference_in_double():
+    """Radii given in float32 reach the reference as float64 (the same values): a
+    reference evaluated in the dtype of its argument gives the float64 answer."""
+    rc = 1.0
+
+    def ref(r):
+        return 3e6 * np.sqrt(np.clip(1 - r * r, 0, None)).astype(np.asarray(r).dtype)
+
+    r32 = np.linspace(0.05, 0.95, 7).astype(np.float32)
+    p = 3e6 * np.sqrt(1 - r32.astype(float) ** 2) * 1.01
+    a = pressure_difference(r32, p, ref, rc)
+    b = pressure_difference(r32.astype(float), p, ref, rc)
+    assert a == b
