@@ -40,7 +40,7 @@ import casefile
 REPO = Path(__file__).resolve().parents[2]
 README = REPO / "README.md"
 BIN = Path(sys.executable).parent
-TOOLS = ("bem", "fem-reference", "verify")
+TOOLS = ("bem", "fem-reference", "verify", "sweep")
 SETUP = "python3 -m venv "
 # Files of the working tree the scratch folder must not share: outputs and environments.
 NOT_MIRRORED = {".git", ".venv", "out", "verification-report", "verification-report-example"}
