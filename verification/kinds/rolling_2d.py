@@ -294,13 +294,17 @@ def figures(result: CaseResult, folder) -> list[str]:
     files = []
     fig = new_figure((6.4, 4.2))
     ax = fig.subplots()
-    styles = {"analytic": "k-", "bem": "o", "fem": "s"}
+    markers = {"bem": "o", "fem": "s"}
     for k, (label, H, solved) in enumerate(parts):
+        colour = f"C{k}"
         for m, runs in solved.items():
             y = [r.scalars["rolling_resistance"] for r in runs]
-            style = styles.get(m, "^")
-            ax.semilogx(speeds * tau / b0, y, style, mfc="none",
-                        label=f"{'Hunter' if m == 'analytic' else m}{' ' + label if label else ''}")
+            name = f"{'Hunter' if m == 'analytic' else m}{' ' + label if label else ''}"
+            if m == "analytic":
+                ax.semilogx(speeds * tau / b0, y, "-", color="k", lw=1, label=name)
+            else:
+                ax.semilogx(speeds * tau / b0, y, markers.get(m, "^") + ":", color=colour, mfc="none", lw=0.8,
+                            ms=7 if m == "bem" else 9, label=name)
     ax.set_xlabel("V tau / b0")
     ax.set_ylabel("rolling resistance R_r (N/m)")
     ax.grid(alpha=0.3, which="both")
