@@ -111,7 +111,7 @@ def run_active_set(setup: RollingSetup, friction: Friction, start: SetState, sol
     ops = setup.ops
     g = ops.grid
     shape, size = g.shape, g.nodes_x * g.nodes_y
-    s, ell, V, reach = setup.profile, setup.ell, setup.speed, setup.reach
+    ell, V = setup.ell, setup.speed
     mu, omega_free = setup.mu, setup.omega is None
     contact, stick = start.contact.copy(), start.stick.copy()
     e_full, k_full = start.direction.copy(), start.slope.copy()
@@ -134,87 +134,43 @@ def run_active_set(setup: RollingSetup, friction: Friction, start: SetState, sol
         # only a tight solve can end the iteration
         tight = misfit <= LOOSE_UNTIL
         N, Sx, Sy, d, om = solves(system, guess, None if tight else LOOSE_REDUCTION)
-        delta, sx, sy = (f.ravel() for f in ops.fields(N.reshape(shape), Sx.reshape(shape), Sy.reshape(shape)))
-        h = np.where(reach, s - d + delta, np.inf)
-        wx, wy = V * (1 + sx) - om * ell, V * sy
-        scale = max(abs(d), 1e-300)
-        drop = contact & (N <= 0)
-        add = ~contact & (h < -1e-12 * scale)
-        smag = np.hypot(Sx, Sy)
-        wmag = np.hypot(wx, wy)
-        slip = contact & ~stick & ~drop
-        to_slip = contact & stick & ~drop & (smag > mu * N * (1 + 1e-10))
-        wdot = wx * Sx + wy * Sy
-        to_stick = slip & (wdot <= 0)
-        slip &= ~to_stick
-        with np.errstate(invalid="ignore", divide="ignore"):
-            mis_mag = np.abs(smag - mu * N)[slip] / (mu * N[slip])
-            mis_dir = np.abs(Sx * wy - Sy * wx)[slip] / (smag * wmag)[slip]
-        misfit = float(max(mis_mag.max(initial=0.0), mis_dir.max(initial=0.0)))
+        v = _measure(setup, contact, stick, N, Sx, Sy, d, om)
+        misfit, wx, wy = v.misfit, v.wx, v.wy
         n_contact, n_stick = int(contact.sum()), int((stick & contact).sum())
         history.append((n_contact, n_stick, misfit, om))
         if progress:
             progress(f"friction {it}: {n_contact} contact, {n_stick} stick, "
-                     f"Omega = {om:.8g} rad/s, -{int(drop.sum())} +{int(add.sum())} contact, "
-                     f"+{int(to_slip.sum())} slip, +{int(to_stick.sum())} stick, slip misfit {misfit:.2e}"
+                     f"Omega = {om:.8g} rad/s, -{int(v.drop.sum())} +{int(v.add.sum())} contact, "
+                     f"+{int(v.to_slip.sum())} slip, +{int(v.to_stick.sum())} stick, slip misfit {misfit:.2e}"
                      + (f", {solves.iterations - lin0} GMRES iterations" if solves.iterations > lin0 else ""))
-        changes = drop.any() or add.any() or to_slip.any() or to_stick.any()
+        changes = v.changes
         # with Omega prescribed, a node joining the contact where the rigid creep
         # |V - Omega l| exceeds 1 % of V slips (as in the start state: sliding, braking);
         # otherwise material enters the contact in stick, as in free rolling
-        join_slip = add & (wmag > 0) & (not omega_free) & (np.abs(V - om * ell) > 1e-2 * V)
+        join_slip = v.add & (v.wmag > 0) & (not omega_free) & (np.abs(V - om * ell) > 1e-2 * V)
         # if a cycle of one-node updates cannot be accepted, a node that left the contact
         # (in stick, pulled into tension by its tangential force) and comes back joins in
         # slip: stick there has no discrete solution
         if reentry:
-            join_slip |= add & (wmag > 0) & dropped
-        dropped |= drop
+            join_slip |= v.add & (v.wmag > 0) & dropped
+        dropped |= v.drop
         if not changes and misfit <= friction.direction_tol and tight:
             break
-        if careful and changes:  # one node at a time, the worst violation first
-            new_c, new_s = contact.copy(), stick.copy()
-            if drop.any():
-                new_c[np.argmin(np.where(drop, N, np.inf))] = False
-            elif add.any():
-                j = np.argmin(np.where(add, h, np.inf))
-                new_c[j] = True
-                new_s[j] = not join_slip[j]
-            elif to_slip.any():
-                new_s[np.argmax(np.where(to_slip, smag - mu * N, -np.inf))] = False
-            else:
-                new_s[np.argmin(np.where(to_stick, wdot, np.inf))] = True
-        else:
-            new_c = (contact & ~drop) | add
-            new_s = ((stick & ~to_slip) | to_stick | (add & ~join_slip)) & new_c
-        new_slip = new_c & ~new_s
-        with np.errstate(invalid="ignore", divide="ignore"):
-            e_new = np.stack([Sx, Sy], 1) / smag[:, None]
-            # the slope k = |w| / (mu N): Newton's (e . w) / |S| at the solution (where
-            # e . w = |w| and |S| = mu N), and away from it a bound on the force's turn,
-            # |e_perp . S| = mu N |sin(e, w)|; floored at 1e-3 min(1, misfit) V / (mu N), so
-            # that a barely slipping node keeps its force near e while the slip law is far
-            # from settled (see SLOPE_FLOOR)
-            k_new = np.maximum(np.where(slip, wmag, 0.0), SLOPE_FLOOR * min(1.0, misfit) * V) / (mu * N)
-            # such a node joins in slip along w, k = |w| / (mu N), N the smallest contact force
-            joining = new_slip & add
-            e_new[joining] = np.stack([wx, wy], 1)[joining] / wmag[joining, None]
-            n_ref = float(N[contact & (N > 0)].min(initial=np.inf))
-            k_new[joining] = wmag[joining] / (mu * n_ref)
-        e_full = np.where(new_slip[:, None] & ((smag[:, None] > 0) | joining[:, None]), e_new, 0.0)
-        k_full = np.where(new_slip, np.nan_to_num(k_new), 0.0)
+        new_c, new_s = _next_sets(setup, v, contact, stick, N, join_slip, careful and changes)
+        e_full, k_full = _next_directions(setup, v, contact, new_c & ~new_s, N, Sx, Sy)
         key = np.packbits(np.concatenate([new_c, new_s])).tobytes()
         # cycles count once the slip law has settled, or when the contact set itself cycles
-        if changes and (misfit <= friction.set_tol or drop.any() or add.any()):
+        if changes and (misfit <= friction.set_tol or v.drop.any() or v.add.any()):
             seen[key] = seen.get(key, 0) + 1
             if seen[key] > 2:
                 if careful:
                     # a two-state cycle at the stick/slip border: accept the state when its
                     # violations are below the set tolerance (recorded in the residuals)
                     with np.errstate(invalid="ignore", divide="ignore"):
-                        over = float(np.nan_to_num(smag / (mu * N) - 1)[contact & stick].max(initial=0.0))
-                        back = float(np.nan_to_num(-wdot / (smag * V))[contact & ~stick].max(initial=0.0))
-                    gap_v = max(float((-h[add]).max(initial=0.0)) / scale,
-                                float((-N[drop]).max(initial=0.0)) / float(N.max()))
+                        over = float(np.nan_to_num(v.smag / (mu * N) - 1)[contact & stick].max(initial=0.0))
+                        back = float(np.nan_to_num(-v.wdot / (v.smag * V))[contact & ~stick].max(initial=0.0))
+                    gap_v = max(float((-v.gap[v.add]).max(initial=0.0)) / v.scale,
+                                float((-N[v.drop]).max(initial=0.0)) / float(N.max()))
                     if gap_v <= 1e-2 * friction.set_tol and max(over, back, misfit) <= friction.set_tol:
                         break
                     if not reentry:  # last resort: returning nodes join in slip
@@ -237,8 +193,119 @@ def run_active_set(setup: RollingSetup, friction: Friction, start: SetState, sol
     if (contact & edge_nodes(shape)).any():
         raise ContactAtEdge("the contact reaches the edge of the candidate region: increase grid.half_width")
     state = SetState(contact=contact, stick=stick, direction=e_full, slope=k_full)
-    return ActiveSetResult(N=N, Sx=Sx, Sy=Sy, indentation=d, omega=om, state=state, history=history, gap=h,
-                           scale=scale)
+    return ActiveSetResult(N=N, Sx=Sx, Sy=Sy, indentation=d, omega=om, state=state, history=history, gap=v.gap,
+                           scale=v.scale)
+
+
+@dataclass(frozen=True)
+class Violations:
+    """What the solution of one set state violates (flat full-grid arrays).
+
+    Attributes
+    ----------
+    gap : ndarray
+        ``h`` (m), ``inf`` where the indenter cannot touch.
+    wx, wy, wmag : ndarray
+        Slip velocity (m/s) and its magnitude.
+    smag, wdot : ndarray
+        ``|S|`` (N) and ``w . S`` (W).
+    drop, add : ndarray of bool
+        Contact nodes in tension; other nodes that penetrate.
+    to_slip, to_stick : ndarray of bool
+        Stick nodes beyond the cone; slip nodes whose slip turned against their force.
+    slip : ndarray of bool
+        Slip nodes that stay in slip.
+    misfit : float
+        Largest slip-law misfit on them (-): ``||S| / (mu N) - 1|`` or ``|sin(S, w)|``.
+    scale : float
+        ``|d|`` (m), the scale of the gap.
+    """
+
+    gap: np.ndarray
+    wx: np.ndarray
+    wy: np.ndarray
+    wmag: np.ndarray
+    smag: np.ndarray
+    wdot: np.ndarray
+    drop: np.ndarray
+    add: np.ndarray
+    to_slip: np.ndarray
+    to_stick: np.ndarray
+    slip: np.ndarray
+    misfit: float
+    scale: float
+
+    @property
+    def changes(self) -> bool:
+        """Whether the sets must change."""
+        return bool(self.drop.any() or self.add.any() or self.to_slip.any() or self.to_stick.any())
+
+
+def _measure(setup: RollingSetup, contact, stick, N, Sx, Sy, d, om) -> Violations:
+    """The violations of the solution ``N, S_x, S_y`` (N), ``d`` (m), ``Omega`` (rad/s)."""
+    ops, V, mu = setup.ops, setup.speed, setup.mu
+    shape = ops.grid.shape
+    delta, sx, sy = (f.ravel() for f in ops.fields(N.reshape(shape), Sx.reshape(shape), Sy.reshape(shape)))
+    h = np.where(setup.reach, setup.profile - d + delta, np.inf)
+    wx, wy = V * (1 + sx) - om * setup.ell, V * sy
+    scale = max(abs(d), 1e-300)
+    drop = contact & (N <= 0)
+    add = ~contact & (h < -1e-12 * scale)
+    smag = np.hypot(Sx, Sy)
+    wmag = np.hypot(wx, wy)
+    slip = contact & ~stick & ~drop
+    to_slip = contact & stick & ~drop & (smag > mu * N * (1 + 1e-10))
+    wdot = wx * Sx + wy * Sy
+    to_stick = slip & (wdot <= 0)
+    slip &= ~to_stick
+    with np.errstate(invalid="ignore", divide="ignore"):
+        mis_mag = np.abs(smag - mu * N)[slip] / (mu * N[slip])
+        mis_dir = np.abs(Sx * wy - Sy * wx)[slip] / (smag * wmag)[slip]
+    misfit = float(max(mis_mag.max(initial=0.0), mis_dir.max(initial=0.0)))
+    return Violations(gap=h, wx=wx, wy=wy, wmag=wmag, smag=smag, wdot=wdot, drop=drop, add=add, to_slip=to_slip,
+                      to_stick=to_stick, slip=slip, misfit=misfit, scale=scale)
+
+
+def _next_sets(setup: RollingSetup, v: Violations, contact, stick, N, join_slip, one_node: bool):
+    """The next contact and stick sets: all violations at once, or (``one_node``) only the
+    worst one (tension first, then penetration, cone excess, reversed slip)."""
+    mu = setup.mu
+    if not one_node:
+        new_c = (contact & ~v.drop) | v.add
+        return new_c, ((stick & ~v.to_slip) | v.to_stick | (v.add & ~join_slip)) & new_c
+    new_c, new_s = contact.copy(), stick.copy()
+    if v.drop.any():
+        new_c[np.argmin(np.where(v.drop, N, np.inf))] = False
+    elif v.add.any():
+        j = np.argmin(np.where(v.add, v.gap, np.inf))
+        new_c[j] = True
+        new_s[j] = not join_slip[j]
+    elif v.to_slip.any():
+        new_s[np.argmax(np.where(v.to_slip, v.smag - mu * N, -np.inf))] = False
+    else:
+        new_s[np.argmin(np.where(v.to_stick, v.wdot, np.inf))] = True
+    return new_c, new_s
+
+
+def _next_directions(setup: RollingSetup, v: Violations, contact, new_slip, N, Sx, Sy):
+    """Slip directions ``e = S / |S|`` and slopes ``k`` (m/(s N)) of the next slip set."""
+    V, mu = setup.speed, setup.mu
+    with np.errstate(invalid="ignore", divide="ignore"):
+        e_new = np.stack([Sx, Sy], 1) / v.smag[:, None]
+        # the slope k = |w| / (mu N): Newton's (e . w) / |S| at the solution (where
+        # e . w = |w| and |S| = mu N), and away from it a bound on the force's turn,
+        # |e_perp . S| = mu N |sin(e, w)|; floored at 1e-3 min(1, misfit) V / (mu N), so
+        # that a barely slipping node keeps its force near e while the slip law is far
+        # from settled (see SLOPE_FLOOR)
+        k_new = np.maximum(np.where(v.slip, v.wmag, 0.0), SLOPE_FLOOR * min(1.0, v.misfit) * V) / (mu * N)
+        # a node joining the contact in slip slips along w, k = |w| / (mu N), N the
+        # smallest contact force
+        joining = new_slip & v.add
+        e_new[joining] = np.stack([v.wx, v.wy], 1)[joining] / v.wmag[joining, None]
+        n_ref = float(N[contact & (N > 0)].min(initial=np.inf))
+        k_new[joining] = v.wmag[joining] / (mu * n_ref)
+    direction = np.where(new_slip[:, None] & ((v.smag[:, None] > 0) | joining[:, None]), e_new, 0.0)
+    return direction, np.where(new_slip, np.nan_to_num(k_new), 0.0)
 
 
 def _unreachable_or_not_converged(friction: Friction, history) -> None:
