@@ -15,11 +15,11 @@ iterations on the same states. Blocks of two rows gave 42 and 62 iterations for 
 times the factorisation cost; applying the circulant step before or after the line
 solves made things worse (147-542).
 
-Cost: the inverse of one ``3 m x 3 m`` block per line of ``m`` contact nodes
-(``O(K m^3)`` flops, ``O(K m^2)`` memory), and a product with it per GMRES iteration
-(``O(K m^2)``). A line whose nodes and stick pattern did not
-change since the previous active-set iteration keeps its factors (the slip directions
-it was built with lag by one iteration; it is only a preconditioner).
+Cost: per line of ``m`` contact nodes the inverses of an ``m x m`` and a ``2 m x 2 m``
+block (``O(K m^3)`` flops, ``O(K m^2)`` memory for ``K`` lines), and products with them
+per GMRES iteration (``O(K m^2)``). A line whose nodes and stick pattern did not change
+since the previous active-set iteration keeps its inverses (the slip directions they
+were built with lag by one iteration; it is only a preconditioner).
 """
 
 from __future__ import annotations
