@@ -26,7 +26,8 @@ default_tests() {
             tests/unit/test_verification_harness.py::test_richardson_refuses_to_extrapolate_stagnant_or_oscillating_sequences \
             tests/unit/test_verification_harness.py::test_radius_fit_is_exact_for_the_hertz_edge \
             tests/unit/test_verification_harness.py::test_pressure_difference_of_a_scaled_field_is_known_exactly ;;
-        bem/spectral.py) echo tests/unit/test_spectral.py ;;
+        bem/spectral.py) echo tests/unit/test_spectral.py \
+            tests/unit/test_bem_speed_limits.py::test_non_finite_kernels_are_an_error_naming_the_speed_and_the_grid ;;
         bem/layer.py) echo tests/unit/test_layer.py tests/unit/test_properties_layer.py ;;
         bem/energy.py) echo tests/unit/test_properties_layer.py ;;
         fem_reference/forms.py|fem_reference/postprocess.py|fem_reference/solve.py)

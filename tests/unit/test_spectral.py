@@ -96,3 +96,65 @@ def test_moving_load_leaves_a_trailing_depression(speed):
         assert np.all(behind > 1.005 * ahead), (fn.__name__, behind, ahead)
     rest = influence_kernels(GRID, VISCO, 0.0)["ww"][Ky - 1]
     np.testing.assert_allclose(rest, rest[::-1], rtol=0, atol=1e-14 * np.abs(rest).max())
+
+
+def test_normal_kernel_alone_matches_direct_summation():
+    """The fast path for the normal block alone (the contact solver's) against the direct
+    sum, for a viscoelastic layer with inertia and an elastic one (a real modulus) with
+    inertia below the shear-wave speed: 1e-14 relative (measured ~2e-15)."""
+    elastic_inertia = Layer(5e-3, Elastic(3.0e6), density=1000.0)  # c_s = 54.8 m/s
+    for layer, speed in ((VISCO, 0.05), (elastic_inertia, 30.0), (ELASTIC, 0.0)):
+        fast = influence_kernels(GRID, layer, speed)["ww"]
+        direct = influence_kernels_direct(GRID, layer, speed)["ww"]
+        assert np.abs(fast - direct).max() <= 1e-14 * np.abs(direct).max()
+        if layer is elastic_inertia:
+            allb = influence_kernels(GRID, layer, speed, blocks=BLOCKS)
+            alld = influence_kernels_direct(GRID, layer, speed, blocks=BLOCKS)
+            for b in BLOCKS:
+                assert np.abs(allb[b] - alld[b]).max() <= 1e-14 * np.abs(alld[b]).max(), b
+
+
+def test_more_modes_than_one_batch():
+    """N_tx = 300 > 256 modes per batch of symbols: every batch is evaluated once and in
+    place (fast against direct, 1e-14 relative)."""
+    grid = Grid(0.7e-3, 0.9e-3, 0.02, 0.025, 300, 30, 7, 6)
+    fast = influence_kernels(grid, VISCO, 0.05, blocks=("ww", "uu"))
+    direct = influence_kernels_direct(grid, VISCO, 0.05, blocks=("ww", "uu"))
+    for b in ("ww", "uu"):
+        assert np.abs(fast[b] - direct[b]).max() <= 1e-14 * np.abs(direct[b]).max(), b
+
+
+def test_glassy_limit_is_computed_without_floating_point_warnings():
+    """At a speed where nu_x V overflows (|omega| = inf: the glassy modulus, finite) and
+    with the direct sum's m = 0 and n = 0 terms (0/0 replaced by a / L), no overflow,
+    divide or invalid warning escapes: the kernels are finite and equal (1e-14)."""
+    import warnings
+
+    layer = Layer(5e-3, ThreeParameterSolid(G0=3.0e6, tau=0.25, f=1.0))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        fast = influence_kernels(GRID, layer, 1e306)["ww"]
+        direct = influence_kernels_direct(GRID, layer, 1e306)["ww"]
+    assert np.isfinite(fast).all()
+    assert np.abs(fast - direct).max() <= 1e-14 * np.abs(direct).max()
+
+
+def test_blocks_and_speed_are_validated():
+    for blocks in (("xx",), ("ww", "wz"), ()):
+        with pytest.raises(ValueError, match=r"^blocks must be among \['uu', 'uv', 'uw', 'vu', 'vv', 'vw', 'wu', 'wv', 'ww'\], got "):
+            influence_kernels(GRID, ELASTIC, 0.0, blocks=blocks)
+        with pytest.raises(ValueError, match=r"^blocks must be among "):
+            influence_kernels_direct(GRID, ELASTIC, 0.0, blocks=blocks)
+    for speed in (-1.0, np.inf, np.nan):
+        with pytest.raises(ValueError, match=r"^speed must be finite and >= 0 m/s, got "):
+            influence_kernels(GRID, ELASTIC, speed)
+
+
+@pytest.mark.parametrize("shape", [(57,), (2, 3, 57)])
+def test_chirp_sum_on_any_leading_shape(shape):
+    """The sum runs over the last axis whatever the number of leading axes."""
+    rng = np.random.default_rng(1)
+    c = rng.normal(size=shape) + 1j * rng.normal(size=shape)
+    ratio, j0, count = 0.0123456789, -11, 23
+    ref = c @ np.exp(2j * np.pi * ratio * np.outer(np.arange(57), np.arange(j0, j0 + count)))
+    np.testing.assert_allclose(_chirp_sum(c, ratio, j0, count), ref, rtol=0, atol=2e-14 * np.abs(ref).max())
