@@ -19,15 +19,16 @@ def test_closed_form_matches_matrix_exponential(G, rho_V2):
     """All nine entries, kH from 0 to 1e5: 1e-11 relative to the largest entry (measured
     1.3e-12; the issue asks 1e-10; the reference itself carries ~1e-13; entries that vanish like (kH)^2 next to H/G cannot
     be resolved relative to themselves by the exponential route)."""
-    worst = 0.0
+    errors = []
     for kh in KH:
         for ang in ANGLES:
             k = kh / H
             nx, ny = k * np.cos(ang), k * np.sin(ang)
             C = surface_compliance(nx, ny, G, rho_V2, H)
             R = surface_compliance_expm(nx, ny, G, rho_V2, H)
-            worst = max(worst, np.abs(C - R).max() / np.abs(R).max())
-    assert worst < 1e-11
+            errors.append(np.abs(C - R).max() / np.abs(R).max())
+    # np.max, not a running max(): a NaN (a broken entry of either route) must fail
+    assert np.max(errors) < 1e-11
 
 
 def test_k_zero_is_exact():
@@ -96,15 +97,59 @@ def test_viscous_layer_dissipates():
         assert np.linalg.eigvalsh(anti).max() <= 1e-12 * np.abs(C).max()
 
 
-@pytest.mark.parametrize("rho_V2", [0.0, 2.5, 3e3, 3e6 * 0.7])
-def test_outer_grid_fast_path_matches_exact(rho_V2):
+@pytest.mark.parametrize("G0, rho_V2", [(3e6, 0.0), (3e6, 2.5), (3e6, 3e3), (3e6, 3e6 * 0.7), (0.5, 1e-8)])
+def test_outer_grid_fast_path_matches_exact(G0, rho_V2):
     """The half-space series used for the many high modes (eps <= 1e-6) against the exact
-    closed form, through the switch to the exact path: 1e-11 relative."""
+    closed form, through the switch to the exact path: 1e-11 relative. The soft case
+    (G ~ 0.5 Pa, rho V^2 = 1e-8 Pa, eps ~ 1e-8) keeps the series in use where its
+    inertia term still shows (~1e-8), so a wrong eps is seen. k = 0 is among the modes:
+    no floating-point warning escapes."""
+    import warnings
+
     nu_x = 2 * np.pi * np.arange(0, 3001, 7) / 0.2
     nu_y = 2 * np.pi * np.arange(0, 3001, 5) / 0.2
-    G = 3e6 + 1e6j / (1 + (nu_x * 0.01) ** 2)
-    fast = normal_compliance_outer(nu_x, nu_y, G, rho_V2, H)
+    G = G0 + G0 / 3 * 1j / (1 + (nu_x * 0.01) ** 2)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        fast = normal_compliance_outer(nu_x, nu_y, G, rho_V2, H)
     exact = normal_compliance(nu_x[:, None], nu_y[None, :], G[:, None], rho_V2, H)
     assert np.abs(fast - exact).max() <= 1e-11 * np.abs(exact).max()
     nz = np.abs(exact) > 0
     assert (np.abs(fast - exact)[nz] / np.abs(exact[nz])).max() < 1e-11
+
+
+def test_closed_form_matches_matrix_exponential_at_unit_scale():
+    """G ~ 1 Pa, H = 1 m, k ~ 0.1-5 1/m: every entry of the system matrix (eq. 45) is O(1)
+    here, so an error in any of them, even one invisible next to G k^2 ~ 1e12 in SI
+    units of the other test, changes the compliance; 1e-11 relative (measured ~1e-14)."""
+    errors = []
+    for G, rho_V2 in ((1.0, 0.0), (1.0 + 0.4j, 0.3), (0.7 + 0.2j, 0.9)):
+        for k in (0.1, 0.8, 2.0, 5.0):
+            for ang in ANGLES:
+                nx, ny = k * np.cos(ang), k * np.sin(ang)
+                C = surface_compliance(nx, ny, G, rho_V2, 1.0)
+                R = surface_compliance_expm(nx, ny, G, rho_V2, 1.0)
+                errors.append(np.abs(C - R).max() / np.abs(R).max())
+    assert np.max(errors) < 1e-11
+
+
+def test_layer_inertia_and_validation():
+    """rho V^2 (Pa) at any density, exactly 0 without density even at an infinite speed;
+    every invalid field named with its value."""
+    from bem.layer import Layer
+    from bem.materials import Elastic
+
+    m = Elastic(3e6)
+    assert Layer(H, m, 1000.0).inertia(2.0) == 4000.0
+    assert Layer(H, m, 0.5).inertia(3.0) == 4.5
+    assert Layer(H, m).inertia(np.inf) == 0.0 and Layer(H, m, 0.0).inertia(7.0) == 0.0
+    assert Layer(1, m, 2).thickness == 1
+    for bad in (0.0, -1e-3, np.inf, np.nan, "5e-3", None):
+        with pytest.raises(ValueError, match=r"^thickness must be > 0 m, got "):
+            Layer(bad, m)
+    for bad in (-1.0, np.inf, np.nan, "1000", None):
+        with pytest.raises(ValueError, match=r"^density must be >= 0 kg/m\^3, got "):
+            Layer(H, m, bad)
+    for bad in (object(), 3e6, type("NoCall", (), {"modulus": 3e6})()):
+        with pytest.raises(TypeError, match=r"^material must have a modulus\(omega\) method, got "):
+            Layer(H, bad)
