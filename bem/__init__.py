@@ -7,7 +7,8 @@ truncated Fourier sums (:mod:`bem.spectral`), the nodal compliance operator
 resistance (:mod:`bem.contact`, :mod:`bem.problem`). SI units throughout.
 
 Entry points: :func:`solve_frictionless` (frictionless contact of a :class:`Problem`, at
-rest or rolling) and :func:`solve_friction` (steady rolling or sliding with Coulomb
+rest or rolling; in plane strain, a :class:`LineCylinder` on a :class:`LineGrid`, it
+calls :func:`solve_line` and returns a :class:`LineContact`, per unit length) and :func:`solve_friction` (steady rolling or sliding with Coulomb
 friction, :class:`Friction`; the solver is the package :mod:`bem.frictional`); on
 prepared operators, :func:`solve_normal` and :func:`bem.frictional.solve_rolling`. Both
 solvers' linear solves go through :class:`bem.linear.LinearSolver`.
@@ -24,6 +25,8 @@ from .spectral import influence_kernels, influence_kernels_direct
 from .friction import Friction, FrictionalContact, FrictionNotConverged, LoadingUnreachable
 from .frictional import solve_friction
 from .energy import viscous_dissipation
+from .indenters import LineCylinder
+from .plane import LineContact, LineGrid, solve_line
 
 __all__ = [
     "ComplianceOperator", "ContactAtEdge", "ContactError", "ContactNotConverged", "Cylinder",
@@ -33,4 +36,5 @@ __all__ = [
     "surface_compliance_expm",
     "Friction", "FrictionalContact", "FrictionNotConverged", "LoadingUnreachable", "solve_friction",
     "viscous_dissipation",
+    "LineContact", "LineCylinder", "LineGrid", "solve_line",
 ]

@@ -33,7 +33,8 @@ import numpy as np
 from .contact import SHARED_SCALARS, ContactAtEdge, NormalContact, solve_normal
 from .layer import Layer, normal_compliance_outer
 from .operator import ComplianceOperator
-from .spectral import _chirp_sum
+from .spectral import chirp_sum
+from .speed import check_subsonic
 
 __all__ = [
     "LineGrid", "LineContact", "line_mode_symbols", "line_kernel", "line_kernel_direct",
@@ -194,7 +195,7 @@ def line_kernel(grid: LineGrid, layer: Layer, speed: float) -> np.ndarray:
     coef = 2 * sym
     coef[0] = sym[0]
     K = grid.nodes
-    table = _chirp_sum(coef, grid.spacing / grid.period, -(K - 1), 2 * K - 1).real[None, :]
+    table = chirp_sum(coef, grid.spacing / grid.period, -(K - 1), 2 * K - 1).real[None, :]
     if not np.isfinite(table).all():
         raise ValueError(
             f"the line kernel is not finite at speed = {speed:g} m/s on the grid of {K} nodes "
@@ -239,7 +240,7 @@ def line_dissipation(grid: LineGrid, layer: Layer, speed: float, force: np.ndarr
     # t_m by chirp-z: sum_N F_N exp(-2 pi i m x_N / L), x_N = (N - (K-1)/2) a
     K = g.nodes
     shift = np.exp(2j * np.pi * np.mod(m * (K - 1) / 2 * g.spacing / g.period, 1.0))
-    t = _chirp_sum(F.astype(complex)[None, :], -g.spacing / g.period, 1, g.truncation)[0] * shift
+    t = chirp_sum(F.astype(complex)[None, :], -g.spacing / g.period, 1, g.truncation)[0] * shift
     t *= np.sinc(m * g.spacing / g.period) / g.period
     return float(2 * speed * g.period * np.sum(nu * np.abs(t) ** 2 * C.imag))
 
@@ -372,7 +373,6 @@ def solve_line(problem, progress: Callable[[str], None] | None = None, grow: boo
     :func:`line_kernel` table of this grid, layer and speed (a widened region computes
     its own).
     """
-    from .problem import check_subsonic
 
     p = problem
     if not isinstance(p.grid, LineGrid):

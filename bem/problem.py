@@ -7,16 +7,14 @@ import time
 from dataclasses import dataclass, replace
 from typing import Callable
 
-from scipy.optimize import brentq
-
 from .contact import ContactAtEdge, NormalContact, solve_normal
 from .grid import Grid
 from .layer import Layer
-from .materials import Elastic
 from .indenters import LineCylinder
 from .operator import ComplianceOperator
 from .plane import LineGrid, solve_line
 from .spectral import influence_kernels
+from .speed import RAYLEIGH_RATIO, check_subsonic  # noqa: F401  (public here too)
 
 __all__ = ["Loading", "Problem", "check_subsonic", "compute_kernels", "solve_frictionless", "auto_half_width"]
 
@@ -49,44 +47,6 @@ class Loading:
             v = getattr(self, name)
             if v is not None and not (math.isfinite(v) and v > 0):
                 raise ValueError(f"{name} must be > 0 {unit}, got {v!r}")
-
-
-def _rayleigh_ratio() -> float:
-    """``c_R / c_s`` of an incompressible solid: the root in (0, 1) of the Rayleigh equation
-    ``(2 - xi^2)^4 = 16 (1 - xi^2)`` (Poisson's ratio 1/2), 0.9553."""
-    return brentq(lambda xi: (2 - xi * xi) ** 4 - 16 * (1 - xi * xi), 0.5, 1 - 1e-12, xtol=1e-15)
-
-
-RAYLEIGH_RATIO = _rayleigh_ratio()
-
-
-def check_subsonic(layer: Layer, speed: float) -> None:
-    """Raise ``ValueError`` unless ``speed`` (m/s) is below the layer's critical speed.
-
-    With inertia (``layer.density > 0``) steady motion of the unbounded layer is subsonic
-    only below the slowest shear-wave speed ``c_s = sqrt(G(0) / rho)``
-    (:attr:`bem.layer.Layer.shear_wave_speed`); at or above it the steady state radiates
-    waves, which the periodic model would only imitate with results that depend on the
-    period. A lossless (elastic) layer resonates earlier, at the speed of its slowest
-    free surface waves: the Rayleigh speed ``c_R = 0.9553 c_s`` (the short-wave limit of
-    the bonded layer's guided waves, which are faster at long wavelengths); a loss modulus
-    damps that resonance. Without inertia (``density = 0``) there is no limit.
-    """
-    c_s = layer.shear_wave_speed
-    wave = (f"shear-wave speed c_s = sqrt(G(0) / rho) = sqrt({layer.relaxed_modulus:g} Pa / "
-            f"{layer.density:g} kg/m^3) = {c_s:.3g} m/s")
-    limit, name, symbol = c_s, wave, "c_s"
-    if isinstance(layer.material, Elastic):
-        limit = RAYLEIGH_RATIO * c_s
-        name = f"Rayleigh speed c_R = {RAYLEIGH_RATIO:.4f} c_s = {limit:.3g} m/s (lossless; {wave})"
-        symbol = "c_R"
-    if speed >= limit:
-        raise ValueError(
-            f"loading.speed = {speed:g} m/s is at or above the layer's {name}: steady motion is "
-            f"subsonic only for speed < {symbol} (faster, the steady state radiates waves that the "
-            "periodic model would only imitate, with results that depend on the period); use a "
-            f"loading.speed below {limit:.3g} m/s, or layer.density = 0 to neglect inertia"
-        )
 
 
 @dataclass(frozen=True)

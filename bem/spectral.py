@@ -31,7 +31,7 @@ import scipy.fft as sfft
 from .grid import Grid
 from .layer import Layer, compliance_blocks, normal_compliance_outer, surface_compliance
 
-__all__ = ["BLOCKS", "influence_kernels", "influence_kernels_direct", "mode_symbols"]
+__all__ = ["BLOCKS", "chirp_sum", "influence_kernels", "influence_kernels_direct", "mode_symbols"]
 
 #: block name -> (row, column) in the 3x3 compliance, rows/cols ordered (w, u, v)
 BLOCKS = {p + q: (i, j) for i, p in enumerate("wuv") for j, q in enumerate("wuv")}
@@ -81,7 +81,7 @@ def mode_symbols(grid: Grid, layer: Layer, speed: float, blocks=("ww",)) -> dict
     return out
 
 
-def _chirp_sum(c: np.ndarray, ratio: float, j0: int, count: int) -> np.ndarray:
+def chirp_sum(c: np.ndarray, ratio: float, j0: int, count: int) -> np.ndarray:
     """``sum_n c[..., n] exp(2 pi i ratio n j)`` for ``j = j0 .. j0 + count - 1``.
 
     Bluestein's identity ``n j = (n^2 + j^2 - (j - n)^2) / 2`` turns the sum into a
@@ -106,6 +106,9 @@ def _chirp_sum(c: np.ndarray, ratio: float, j0: int, count: int) -> np.ndarray:
 
 
 _MATMUL_NODES = 128  # up to this many nodes a side, trigonometric matrix products win
+
+
+_chirp_sum = chirp_sum  # the earlier private name
 
 
 def _turns(ratio: float, a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -152,12 +155,12 @@ def kernels_from_symbols(grid: Grid, symbols: dict) -> dict:
         odd = b in _ODD_IN_NY
         coef = 2 * sym
         coef[:, 0] = 0 if odd else sym[:, 0]
-        S = _chirp_sum(coef, ry, -(Ky - 1), 2 * Ky - 1)  # (m, dy) over n >= 0
+        S = chirp_sum(coef, ry, -(Ky - 1), 2 * Ky - 1)  # (m, dy) over n >= 0
         # full n-sum from the n >= 0 half: g(m, -n) = +/- g(m, n)
         h = 0.5 * (S + S[:, ::-1]) if not odd else 0.5 * (S - S[:, ::-1])
         cm = 2 * h.T
         cm[:, 0] = h[0]
-        out[b] = _chirp_sum(cm, rx, -(Kx - 1), 2 * Kx - 1).real  # (dy, dx)
+        out[b] = chirp_sum(cm, rx, -(Kx - 1), 2 * Kx - 1).real  # (dy, dx)
     return out
 
 
