@@ -6,6 +6,7 @@
 #   tools/mutation.sh MODULE [TEST_FILE ...]        e.g. tools/mutation.sh bem/kinematics.py
 #   MUTATION_REF=<commit>  tools/mutation.sh ...    mutate/test another commit
 #   MUTATION_DIR=<dir>     tools/mutation.sh ...    scratch directory (default /tmp/viscolayer-mutation/<module>)
+#   MUTATION_NAMES='<mutant names or globs>' ...    only these mutants (e.g. the survivors of a full run)
 #
 # Without TEST_FILE the default list of fast test files for MODULE (below) is used.
 # Prints the summary line (killed / survived / ... / score) and the survivors' diffs;
@@ -65,7 +66,9 @@ settings.load_profile("mutation")
 PY
 echo "mutating $module of $(git -C "$here" rev-parse --short "$ref") in $work against: ${present[*]}" >&2
 export MPLBACKEND=Agg OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 MKL_NUM_THREADS=1
-nice -n 19 "$py" -m mutmut run --max-children 1 >mutmut.log 2>&1 || { tail -40 mutmut.log; exit 1; }
+# MUTATION_NAMES="name1 name2 ..." (or globs such as 'bem.layer.x_system_matrix*') runs only those mutants
+# shellcheck disable=SC2086
+nice -n 19 "$py" -m mutmut run --max-children 1 ${MUTATION_NAMES:-} >mutmut.log 2>&1 || { tail -40 mutmut.log; exit 1; }
 nice -n 19 "$py" -m mutmut results --all true >results.txt 2>&1 || true
 "$py" - <<'PY'
 import collections, re
