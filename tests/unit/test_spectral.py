@@ -158,3 +158,17 @@ def test_chirp_sum_on_any_leading_shape(shape):
     ratio, j0, count = 0.0123456789, -11, 23
     ref = c @ np.exp(2j * np.pi * ratio * np.outer(np.arange(57), np.arange(j0, j0 + count)))
     np.testing.assert_allclose(_chirp_sum(c, ratio, j0, count), ref, rtol=0, atol=2e-14 * np.abs(ref).max())
+
+
+class _BrokenAboveMHz:
+    """A material model that breaks down above 1e6 rad/s."""
+
+    def modulus(self, omega):
+        omega = np.asarray(omega, float)
+        return np.where(np.abs(omega) > 1e6, np.nan, 3e6).astype(complex)
+
+
+@pytest.mark.filterwarnings("ignore:invalid value:RuntimeWarning")
+def test_non_finite_kernels_are_all_named():
+    with pytest.raises(ValueError, match=r"^the influence kernels ww, uu are not finite at speed = 1000 m/s on the grid "):
+        influence_kernels(GRID, Layer(5e-3, _BrokenAboveMHz()), 1e3, blocks=("ww", "uu"))
