@@ -26,9 +26,9 @@ def check(settings: dict, problem: dict, where: str) -> None:
     check_table(settings, FIELDS, where)
 
 
-def run(problem_cfg: dict, settings: dict, spacing: float) -> Run:
-    """The BEM on one grid of node spacing ``spacing`` (m); the truncation resolves the
-    grid (``Nt = ceil(factor L / 2a)``)."""
+def _solve(problem_cfg: dict, settings: dict, spacing: float):
+    """(problem, result, seconds) of the BEM on one grid of node spacing ``spacing`` (m);
+    the truncation resolves the grid (``Nt = ceil(factor L / 2a)``)."""
     from bem.case import problem_from_config
     from bem.problem import solve_frictionless
 
@@ -39,7 +39,12 @@ def run(problem_cfg: dict, settings: dict, spacing: float) -> Run:
     problem, _ = problem_from_config(cfg)
     t = time.perf_counter()
     res, _ = solve_frictionless(problem)
-    seconds = time.perf_counter() - t
+    return problem, res, time.perf_counter() - t
+
+
+def run(problem_cfg: dict, settings: dict, spacing: float) -> Run:
+    """The BEM on one grid of node spacing ``spacing`` (m)."""
+    problem, res, seconds = _solve(problem_cfg, settings, spacing)
     X, Y = problem.grid.coordinates()
     r = np.hypot(X, Y)
     scalars = {
@@ -56,26 +61,9 @@ def run_line(problem_cfg: dict, settings: dict, spacing: float) -> Run:
     """The plane-strain BEM (a line contact, per unit length) on one grid of node
     spacing ``spacing`` (m); ``Run.r`` holds the signed ``x`` of the nodes (m, ``x > 0``
     ahead) and the scalars are per unit length (N/m)."""
-    from bem.case import problem_from_config
-    from bem.problem import solve_frictionless
-
-    period = settings.get("period", 0.2)
-    nt = math.ceil(settings.get("truncation_factor", 1.0) * period / (2 * spacing) - 1e-9)
-    cfg = {k: dict(v) for k, v in problem_cfg.items()}
-    cfg["grid"] = {"spacing": spacing, "period": period, "truncation": nt, "half_width": settings["half_width"]}
-    problem, _ = problem_from_config(cfg)
-    t = time.perf_counter()
-    res, _ = solve_frictionless(problem)
-    seconds = time.perf_counter() - t
-    scalars = {
-        "rolling_resistance": res.rolling_resistance,
-        "rolling_resistance_energy": res.rolling_resistance_energy,
-        "indentation": res.indentation,
-        "leading_edge": res.leading_edge,
-        "trailing_edge": res.trailing_edge,
-        "peak_pressure": res.peak_pressure,
-        "load": res.load,
-    }
+    _, res, seconds = _solve(problem_cfg, settings, spacing)
+    scalars = {q: getattr(res, q) for q in ("rolling_resistance", "rolling_resistance_energy", "indentation",
+                                            "leading_edge", "trailing_edge", "peak_pressure", "load")}
     return Run("bem", spacing, scalars, np.asarray(res.x), np.asarray(res.pressure_profile), seconds)
 
 
