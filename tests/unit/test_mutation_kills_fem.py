@@ -147,6 +147,11 @@ def test_fem_contact_radius_fit_reads_the_stated_band():
     gap[6:] = 1e-3  # beyond the band of 3 vertices
     assert abs(fem_fit(r_last, r, gap, h, 3) - rc) < 1e-15
     assert abs(fem_fit(r_last, r, gap, h, 4) - rc) > 1e-6  # a wider band reads the corrupt vertex
+    r_edge = np.append(r, r_last + 1e-6 * h)  # exactly on the inner limit: excluded
+    assert abs(fem_fit(r_last, r_edge, np.append(gap, 1e-3), h, 3) - rc) < 1e-15
+    two = np.array([r_last, r_last + h, r_last + (1 + 0.25) * h])  # the second exactly on the outer limit
+    g_two = 0.7 * np.clip(two - rc, 0, None) ** 1.5
+    assert abs(fem_fit(r_last, two, g_two, h, 1) - rc) < 1e-15  # two vertices are enough
     g2 = gap.copy()
     g2[4] = -1e-30  # round-off below zero inside the band counts as 0 (no NaN)
     assert np.isfinite(fem_fit(r_last, r, g2, h, 3))
