@@ -87,12 +87,12 @@ def test_thick_layer_gives_hertz():
     r = run(Elastic(G), 0.0, density=0.0, grid=grid, indenter=Paraboloid(R), thickness=0.03, load=P)
     a = (3 * P * R / (16 * G)) ** (1 / 3)  # E* = 4 G
     p0 = 3 * P / (2 * math.pi * a**2)
-    assert abs(r.contact_radius / a - 1) < 0.005  # measured 0.03%; node counting noise
-    assert abs(r.peak_pressure / p0 - 1) < 0.005  # measured 0.03%
+    assert abs(r.contact_radius / a - 1) < 0.001  # measured 0.03%; node counting noise, 3x margin
+    assert abs(r.peak_pressure / p0 - 1) < 0.001  # measured 0.03%, 3x margin
     X, Y = grid.coordinates()
     inner = X**2 + Y**2 < (0.8 * a) ** 2
     hertz = p0 * np.sqrt(1 - (X[inner] ** 2 + Y[inner] ** 2) / a**2)
-    assert np.abs(r.pressure[inner] - hertz).max() < 0.005 * p0  # measured 0.14%
+    assert np.abs(r.pressure[inner] - hertz).max() < 0.003 * p0  # measured 0.14%, 2x margin
 
 
 def test_displacement_control_inverts_load_control():
