@@ -4,7 +4,6 @@ import pytest
 
 from fem_reference import (ContactProblem, ElasticMaterial, FemSettings, Indenter, InputError,
                            Layer, Loading)
-from fem_reference.errors import LinearSolverError
 import casefile
 from fem_reference.case import load_case, problem_from_dict
 from fem_reference.discretization import resolve
@@ -128,10 +127,6 @@ def test_minres_without_pyamg_fails_at_the_input(monkeypatch):
     assert FemSettings(solver="direct").solver == "direct"
 
 
-@pytest.mark.xfail(strict=True, raises=LinearSolverError, reason=(
-    "known bug (issue 14): MINRES returns info=0 but its true relative residual stays "
-    "1.9e-5 (rtol 1e-8; 2.1e-7 at rtol 1e-10) on this axisymmetric case, so LinearSolverError "
-    "is raised; remove this mark when fixed"))
 def test_minres_solve_matches_the_direct_solve():
     """fem.solver = "minres" (with pyamg) on the coarse thick-layer case: the same contact
     as the direct solver to the iterative tolerance (1e-6 relative, rtol 1e-8)."""
