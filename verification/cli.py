@@ -11,7 +11,6 @@ from __future__ import annotations
 import argparse
 import signal
 import sys
-import time
 from pathlib import Path
 
 from .report import ReportError, check_junit, check_out, drift, load_baseline, summary_line, write_report
@@ -95,7 +94,7 @@ def main(argv: list[str] | None = None) -> int:
             return EXIT_INPUT
 
     previous = signal.signal(signal.SIGTERM, _on_sigterm)
-    results, t0 = [], time.perf_counter()
+    results = []
     try:
         for i, case in enumerate(cases, 1):
             progress(f"[{i}/{len(cases)}] {case['name']}: {case['title']}")

@@ -253,7 +253,7 @@ def _write_all(results, folder: Path, drifts: list[Drift]) -> None:
         body += [f"<h2>{flags.title}</h2>", _html_table(flags.head, flags.rows)]
     for r in results:
         kind = KINDS.get(r.kind)
-        ran = kind is not None and r.gates and r.gates[0].quantity != "run"
+        ran = kind is not None and "error" not in r.extra  # a case that raised has nothing to draw
         figs, tables, broken = [], [], ""
         try:  # a table or figure that cannot be drawn must not lose the run's verdicts
             if ran:

@@ -112,7 +112,8 @@ def load_cases(paths: list[Path], extra_methods: list[str] = ()) -> list[dict]:
             case = load_case(path, known)
             for method in added:
                 add_method(case, method)
-            KINDS[case["kind"]].check(case, path, case["_methods"])  # again, with the added methods
+            if added:  # again, with the added methods
+                KINDS[case["kind"]].check(case, path, case["_methods"])
             cases.append(case)
         except CaseError as exc:
             errors.append(str(exc))
@@ -134,6 +135,7 @@ def run_case(case: dict, progress: Callable[[str], None] = print, quick: bool = 
         raise
     except Exception as exc:
         result = CaseResult(case["name"], case["title"], case.get("why", ""), case["kind"])
+        result.extra["error"] = f"{type(exc).__name__}: {exc}"
         result.gates.append(Gate(case=case["name"], quantity="run", method="-", against="-", level="-",
                                  value=float("nan"), reference=float("nan"), error=float("nan"), tolerance=0.0,
                                  reason=f"the case did not run: {type(exc).__name__}: {exc}"))

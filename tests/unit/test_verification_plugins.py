@@ -4,11 +4,9 @@ computed elsewhere, all through the command line."""
 
 import importlib.metadata
 import json
-import math
 from pathlib import Path
 
 import numpy as np
-import pytest
 
 import verification.methods as methods
 from verification.cli import main as verify_main
@@ -98,8 +96,8 @@ def test_hertz_plugin_passes_on_the_half_space_and_is_caught_on_the_thin_layer(t
 
 
 def test_a_case_can_hold_a_plugin_to_a_gate_against_the_bem(tmp_path):
-    gate = (f'\n[methods.hertz]\nentry = "hertz_method:solve"\n[[gates]]\nquantity = "contact_radius"\n'
-            f'methods = ["hertz"]\nagainst = "bem"\ntolerance = 0.01\nreason = "test"\n')
+    gate = ('\n[methods.hertz]\nentry = "hertz_method:solve"\n[[gates]]\nquantity = "contact_radius"\n'
+            'methods = ["hertz"]\nagainst = "bem"\ntolerance = 0.01\nreason = "test"\n')
     cases = _cases(tmp_path, HALFSPACE, extra=gate)
     import sys
 
@@ -175,3 +173,25 @@ def test_a_plugin_that_raises_fails_its_gates_not_the_suite(tmp_path):
     g = _gates(out, "bad")[("hs", "contact_radius", "analytic")]
     assert not g["passed"] and g["error"] is None and "RuntimeError: diverged" in g["reason"]
     assert all(x["passed"] for x in _gates(out, "bem").values())
+
+
+def test_a_case_that_raises_is_a_failed_case_and_the_others_run(tmp_path, monkeypatch):
+    from verification.kinds import stationary
+
+    real = stationary.run
+
+    def run(case, ctx):
+        if case["name"] == "thin":
+            raise RuntimeError("mesh exploded")
+        return real(case, ctx)
+
+    monkeypatch.setattr(stationary, "run", run)
+    cases = _cases(tmp_path, HALFSPACE, THIN)
+    out = tmp_path / "out"
+    assert verify_main(["--cases-dir", str(cases), "--out", str(out)]) == 1
+    metrics = json.loads((out / "metrics.json").read_text())
+    by_name = {c["name"]: c for c in metrics["cases"]}
+    assert by_name["hs"]["passed"] and not by_name["thin"]["passed"]
+    assert "RuntimeError: mesh exploded" in by_name["thin"]["gates"][0]["reason"]
+    assert "| thin | FAIL |" in (out / "summary.md").read_text()
+    assert "the case did not run: RuntimeError: mesh exploded" in (out / "report.md").read_text()

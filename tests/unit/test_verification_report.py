@@ -15,7 +15,6 @@ import numpy as np
 import pytest
 
 from verification import report as report_module
-from verification.cli import main as verify_main
 from verification.report import drift, load_baseline, write_report
 from verification.results import CaseResult, Gate, Run
 

@@ -3,7 +3,6 @@ lists ends in exit 2 with a message naming the file, the gate and the field."""
 
 import copy
 import tomllib
-from pathlib import Path
 
 import pytest
 from hypothesis import HealthCheck, given, settings

@@ -164,17 +164,15 @@ def _solve_part(case: dict, ctx, label: str, result: CaseResult) -> dict:
     out = {}
     for name in _used(case):
         method = ctx.methods[name]
-        levels = method.levels(case)
+        finest = method.levels(case)[-1]  # the gated level; coarser ones would be solved for nothing
         runs = []
         try:
             for V in speeds:
                 problem = copy.deepcopy(case["problem"])
                 problem["loading"]["speed"] = V
-                per_level = [method.solve(problem, level) for level in levels]
-                run = per_level[-1]
+                run = method.solve(problem, finest)
                 if not isinstance(run, Run):
                     raise TypeError(f"method {name!r} returned {type(run).__name__}, not verification.results.Run")
-                run.extra_levels = per_level[:-1]
                 ctx.progress(f"  {case['name']}{label and ' ' + label}: {name} V = {V:.4g} m/s: R_r = "
                              f"{run.scalars.get('rolling_resistance', math.nan):.6g} N/m, edges "
                              f"{run.scalars.get('trailing_edge', math.nan) * 1e3:.4f}.."

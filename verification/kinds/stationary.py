@@ -12,7 +12,7 @@ from ..methods import references
 from ..formatting import fmt, new_figure
 from ..metrics import pressure_difference, richardson
 from ..results import CaseResult, Gate, Run, Table
-from ..schema import LEVELS, PRESSURE, SCALARS, CaseError, close
+from ..schema import PRESSURE, SCALARS, CaseError, close
 
 ADDS_METHODS = True  # verify --method NAME holds NAME to every gate the BEM is held to
 QUANTITIES = SCALARS + PRESSURE

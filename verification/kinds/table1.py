@@ -9,7 +9,7 @@ import time
 from pathlib import Path
 
 from ..methods import bem
-from ..formatting import fmt, new_figure
+from ..formatting import new_figure
 from ..results import CaseResult, Gate, Table
 from ..schema import CaseError, Field, check_table
 
