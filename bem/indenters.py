@@ -32,7 +32,7 @@ class Sphere:
         _check_radius(self.radius)
 
     def profile(self, X, Y):
-        r2 = np.asarray(X) ** 2 + np.asarray(Y) ** 2
+        r2 = np.asarray(X, float) ** 2 + np.asarray(Y, float) ** 2
         if np.any(r2 >= self.radius**2):
             raise ValueError(
                 f"the grid reaches {math.sqrt(float(np.max(r2))):.4g} m from the axis, beyond the "
@@ -41,7 +41,7 @@ class Sphere:
         return r2 / (self.radius + np.sqrt(self.radius**2 - r2))  # R - sqrt(R^2 - r^2), no cancellation
 
     def rolling_arm(self, X, Y):
-        return np.asarray(X) / self.radius
+        return np.asarray(X, float) / self.radius
 
 
 @dataclass(frozen=True)
@@ -54,10 +54,10 @@ class Paraboloid:
         _check_radius(self.radius)
 
     def profile(self, X, Y):
-        return (np.asarray(X) ** 2 + np.asarray(Y) ** 2) / (2 * self.radius)
+        return (np.asarray(X, float) ** 2 + np.asarray(Y, float) ** 2) / (2 * self.radius)
 
     def rolling_arm(self, X, Y):
-        return np.asarray(X) / self.radius
+        return np.asarray(X, float) / self.radius
 
 
 @dataclass(frozen=True)
@@ -83,7 +83,7 @@ class Cylinder:
         return np.where(np.abs(Y) <= self.length / 2, g, np.inf)
 
     def rolling_arm(self, X, Y):
-        return np.asarray(X) / self.radius
+        return np.asarray(X, float) / self.radius
 
 
 @dataclass(frozen=True)
@@ -118,7 +118,7 @@ class HeightMap:
     """Any indenter given by its lower surface ``h(x, y) >= 0`` (m) on a rectangular table.
 
     ``x`` (m, increasing, shape ``(nx,)``), ``y`` (m, increasing, ``(ny,)``), ``h`` (m,
-    ``(ny, nx)``), interpolated bilinearly at the nodes; outside the table the indenter
+    ``(ny, nx)``), interpolated bilinearly at the nodes; every entry finite and ``>= 0``; outside the table the indenter
     cannot touch. The rolling arm is the slope ``dh/dx`` (the horizontal projection of a
     normal force), from centred differences of the table.
     """
@@ -135,8 +135,11 @@ class HeightMap:
         for name, a in (("x", x), ("y", y)):
             if a.size < 2 or np.any(np.diff(a) <= 0):
                 raise ValueError(f"{name} must be strictly increasing with >= 2 values")
-        if not np.all(np.isfinite(h)) or h.min() < 0:
-            raise ValueError(f"h must be finite and >= 0 m, got min {h.min()!r}")
+        bad = np.argwhere(~(np.isfinite(h) & (h >= 0)))
+        if bad.size:
+            j, i = bad[0]
+            raise ValueError(f"h must be finite and >= 0 m, got h[{j}, {i}] = {float(h[j, i])!r} "
+                             f"at x = {float(x[i])!r} m, y = {float(y[j])!r} m")
         slope = np.gradient(h, x, axis=1)
         opts = dict(bounds_error=False, fill_value=np.inf)
         object.__setattr__(self, "_interp", (

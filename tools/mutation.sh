@@ -7,11 +7,15 @@
 #   MUTATION_REF=<commit>  tools/mutation.sh ...    mutate/test another commit
 #   MUTATION_DIR=<dir>     tools/mutation.sh ...    scratch directory (default /tmp/viscolayer-mutation/<module>)
 #   MUTATION_NAMES='<mutant names or globs>' ...    only these mutants (e.g. the survivors of a full run)
+#   MUTATION_TIMEOUT_MULTIPLIER=<x> ...             a mutant times out after 2 x (its tests' clean
+#                                                   time + 1 s) CPU seconds (default 3; mutmut's own 15
+#                                                   let a runaway mutant of a 20 s test set burn 10 min)
 #
 # Without TEST_FILE the default list of fast test files for MODULE (below) is used.
 # Prints the summary line (killed / survived / ... / score) and the survivors' diffs;
 # `cd $MUTATION_DIR && mutmut show NAME` shows one mutant. Runs under `nice -n 19` with
-# one worker (the machine is shared). See TESTING.md.
+# one worker (the machine is shared); each mutant's tests run fastest first, so a killed
+# mutant costs its cheapest failing test. See TESTING.md.
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 module=${1:?usage: tools/mutation.sh MODULE [TEST_FILE ...]}
@@ -29,7 +33,8 @@ default_tests() {
             tests/unit/test_verification_harness.py::test_pressure_difference_of_a_scaled_field_is_known_exactly ;;
         bem/spectral.py) echo tests/unit/test_spectral.py \
             tests/unit/test_bem_speed_limits.py::test_non_finite_kernels_are_an_error_naming_the_speed_and_the_grid ;;
-        bem/layer.py) echo tests/unit/test_layer.py tests/unit/test_properties_layer.py ;;
+        bem/layer.py) echo tests/unit/test_layer.py tests/unit/test_properties_layer.py \
+            tests/unit/test_derivation_eq45.py ;;
         bem/energy.py) echo tests/unit/test_properties_layer.py ;;
         fem_reference/forms.py|fem_reference/postprocess.py|fem_reference/solve.py)
             echo tests/unit/test_fem_contact.py tests/unit/test_fem_inputs.py tests/unit/test_mutation_kills_fem.py ;;
@@ -54,6 +59,7 @@ only_mutate = ["$module"]
 also_copy = ["examples/", "docs/", "benchmarks/", "README.md"]
 pytest_add_cli_args_test_selection = $(toml_list "${present[@]}")
 pytest_add_cli_args = ["-x", "-q", "-p", "no:cacheprovider", "-m", "not slow"]
+timeout_multiplier = ${MUTATION_TIMEOUT_MULTIPLIER:-3}
 TOML
 # hypothesis in mutation runs: fixed examples, no shrinking (a killed mutant needs no
 # minimal example), no example database
@@ -63,6 +69,18 @@ from hypothesis import Phase, settings
 settings.register_profile("mutation", derandomize=True, database=None,
                           phases=[Phase.explicit, Phase.generate])
 settings.load_profile("mutation")
+
+
+def pytest_collection_modifyitems(config, items):
+    """Run a mutant's tests fastest first (durations of mutmut's clean run): with -x a
+    killed mutant then costs its cheapest failing test, not whatever test came first."""
+    try:
+        from mutmut.state import state
+        duration = state().duration_by_test
+    except Exception:  # the clean and the stats runs: keep pytest's order
+        return
+    if duration:
+        items.sort(key=lambda item: duration.get(item.nodeid, 0.0))
 PY
 echo "mutating $module of $(git -C "$here" rev-parse --short "$ref") in $work against: ${present[*]}" >&2
 export MPLBACKEND=Agg OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 MKL_NUM_THREADS=1

@@ -195,9 +195,15 @@ def test_height_map_of_a_bilinear_surface_interpolates_exactly():
         ([0.0], [0.0, 1.0], np.zeros((2, 1)), r"^x must be strictly increasing with >= 2 values$"),
         ([0.0, 0.0], [0.0, 1.0], np.zeros((2, 2)), r"^x must be strictly increasing with >= 2 values$"),
         ([0.0, 1.0], [1.0, 0.0], np.zeros((2, 2)), r"^y must be strictly increasing with >= 2 values$"),
-        ([0.0, 1.0], [0.0, 1.0], [[0.0, -1e-9], [0.0, 0.0]], r"^h must be finite and >= 0 m, got min "),
-        ([0.0, 1.0], [0.0, 1.0], [[0.0, np.nan], [0.0, 0.0]], r"^h must be finite and >= 0 m, got min "),
-        ([0.0, 1.0], [0.0, 1.0], [[0.0, np.inf], [0.0, 0.0]], r"^h must be finite and >= 0 m, got min "),
+        # the first offending entry, as a plain number (not np.float64(...)), with its place
+        ([0.0, 1.0], [0.0, 2.0], [[0.0, -1e-9], [-2.0, 0.0]],
+         r"^h must be finite and >= 0 m, got h\[0, 1\] = -1e-09 at x = 1\.0 m, y = 0\.0 m$"),
+        ([0.0, 1.0], [0.0, 2.0], [[0.0, 0.0], [np.nan, 0.0]],
+         r"^h must be finite and >= 0 m, got h\[1, 0\] = nan at x = 0\.0 m, y = 2\.0 m$"),
+        ([0.0, 1.0], [0.0, 2.0], [[0.0, np.inf], [0.0, 0.0]],
+         r"^h must be finite and >= 0 m, got h\[0, 1\] = inf at x = 1\.0 m, y = 0\.0 m$"),
+        ([0.0, 1.0], [0.0, 2.0], [[0.0, 0.0], [0.0, -np.inf]],
+         r"^h must be finite and >= 0 m, got h\[1, 1\] = -inf at x = 1\.0 m, y = 2\.0 m$"),
     ],
 )
 def test_height_map_validation(x, y, h, message):
@@ -219,13 +225,21 @@ def test_single_precision_coordinates_are_computed_in_double():
     X32 = np.array([0.0011, -0.0047, 0.0093], dtype=np.float32)
     X64 = X32.astype(float)
     Y32 = np.zeros(3, dtype=np.float32)
+    Y32b = np.array([0.0021, 0.0003, -0.0011], dtype=np.float32)
     for body, args32, args64 in (
         (Cylinder(R, 0.006), (X32, Y32), (X64, Y32.astype(float))),
         (LineCylinder(R), (X32,), (X64,)),
+        (Sphere(R), (X32, Y32b), (X64, Y32b.astype(float))),
+        (Paraboloid(R), (X32, Y32b), (X64, Y32b.astype(float))),
     ):
-        np.testing.assert_allclose(body.profile(*args32), body.profile(*args64), rtol=1e-15, atol=0)
-    # (Sphere, Paraboloid and Cylinder return their arm x / R in the dtype of x)
-    np.testing.assert_allclose(LineCylinder(R).rolling_arm(X32), X64 / R, rtol=1e-15, atol=0)
+        for f32, f64 in ((body.profile(*args32), body.profile(*args64)),
+                         (body.rolling_arm(*args32), X64 / R)):
+            assert f32.dtype == np.float64, (type(body).__name__, f32.dtype)
+            np.testing.assert_allclose(f32, f64, rtol=1e-15, atol=0)
+    # float32 arithmetic would be off by ~1e-8 relative: the check above can tell
+    assert np.max(np.abs((X32 / np.float32(R)).astype(float) / (X64 / R) - 1)) > 1e-9
+    p32 = Sphere(R).profile(X64, Y32b.astype(float)).astype(np.float32).astype(float)
+    assert np.max(np.abs(p32 / Sphere(R).profile(X64, Y32b.astype(float)) - 1)) > 1e-9
     end = np.array([np.float32(0.003)])
     assert float(end[0]) > 0.003
     assert np.isposinf(Cylinder(R, 0.006).profile(np.array([0.001]), end)[0])
