@@ -38,7 +38,7 @@ from .speed import check_subsonic
 
 __all__ = [
     "LineGrid", "LineContact", "line_mode_symbols", "line_kernel", "line_kernel_direct",
-    "line_dissipation", "contact_edges", "solve_line",
+    "line_dissipation", "contact_edges", "edges_along", "solve_line",
 ]
 
 
@@ -262,11 +262,19 @@ def contact_edges(grid: LineGrid, force: np.ndarray, gap: np.ndarray | None = No
     (``docs/derivations.md``, plane strain) both are within 0.13 spacings of the edge, the
     gap's within 0.10; a single loaded node gives its patch, ``x +/- a/2``.
     """
+    return edges_along(grid.x, grid.spacing, force, gap)
+
+
+def edges_along(x: np.ndarray, spacing: float, force: np.ndarray,
+                gap: np.ndarray | None = None) -> tuple[float, float]:
+    """:func:`contact_edges` on any evenly spaced row of nodes: positions ``x`` (m,
+    increasing, ``spacing`` m apart), their nodal forces ``force`` (any unit, compressive
+    positive) and gaps ``gap`` (m); for example the row ``y = 0`` of a 3D grid."""
     F = np.asarray(force, float).reshape(-1)
     idx = np.flatnonzero(F > 0)
     if idx.size == 0:
         raise ValueError("no node carries load: the contact has no edges")
-    x, a = grid.x, grid.spacing
+    x, a = np.asarray(x, float), float(spacing)
     if idx.size == 1:
         return float(x[idx[0]] - a / 2), float(x[idx[0]] + a / 2)
     h = None if gap is None else np.asarray(gap, float).reshape(-1)

@@ -15,7 +15,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Callable
 
-from . import paper_sweeps, rolling_2d, rolling_limits, stationary, sweep, table1
+from . import paper_sweeps, rolling_2d, rolling_3d, rolling_limits, stationary, sweep, table1
 
 __all__ = ["KINDS", "Context"]
 
@@ -25,6 +25,7 @@ KINDS = {
     "table1": table1,
     "rolling-limits": rolling_limits,
     "rolling-2d": rolling_2d,
+    "rolling-3d": rolling_3d,
     "paper-sweeps": paper_sweeps,
 }
 

@@ -32,6 +32,8 @@ from ..formatting import fmt, new_figure
 from ..results import CaseResult, Gate, Run, Table
 from ..schema import CaseError, Field, check_table, close
 
+__all__ = ["errors", "scales"]
+
 ADDS_METHODS = True
 SECTIONS = ("analytic", "bem", "fem", "methods", "speeds", "layers")
 QUANTITIES = ("rolling_resistance", "leading_edge", "trailing_edge", "indentation", "peak_pressure", "pressure_rms_interior")
@@ -188,7 +190,8 @@ def _solve_part(case: dict, ctx, label: str, result: CaseResult) -> dict:
     return out
 
 
-def _errors(quantity: str, runs, refs, speeds) -> list[float]:
+def errors(quantity: str, runs, refs) -> list[float]:
+    """Errors of ``runs`` against ``refs`` (same length), as the module's docstring says."""
     if quantity == "rolling_resistance":
         scale = max(abs(r.scalars["rolling_resistance"]) for r in refs)
         return [abs(a.scalars[quantity] - b.scalars[quantity]) / scale for a, b in zip(runs, refs)]
@@ -239,12 +242,12 @@ def run(case: dict, ctx) -> CaseResult:
                 runs = solved[method]
                 try:
                     if against == "dissipation":
-                        errors = _energy_errors(runs, speeds)
+                        errs = _energy_errors(runs, speeds)
                         refs = [r.scalars["dissipation"] / V for r, V in zip(runs, speeds)]
                         values = [r.scalars["rolling_resistance"] for r in runs]
                     else:
                         ref_runs = solved[against]
-                        errors = _errors(q, runs, ref_runs, speeds)
+                        errs = errors(q, runs, ref_runs)
                         key = "peak_pressure" if q == "pressure_rms_interior" else q
                         refs = [r.scalars[key] for r in ref_runs]
                         values = [r.scalars[key] for r in runs]
@@ -252,9 +255,9 @@ def run(case: dict, ctx) -> CaseResult:
                     result.gates.append(Gate(value=math.nan, reference=math.nan, error=math.nan,
                                              **{**common, "reason": f"method {method!r} or {against!r} gave no {exc}"}))
                     continue
-                worst = int(np.nanargmax(errors)) if np.isfinite(errors).any() else 0
+                worst = int(np.nanargmax(errs)) if np.isfinite(errs).any() else 0
                 result.gates.append(Gate(value=float(values[worst]), reference=float(refs[worst]),
-                                         error=float(errors[worst]) if np.isfinite(errors).all() else math.nan,
+                                         error=float(errs[worst]) if np.isfinite(errs).all() else math.nan,
                                          **{**common, "reason": f"{spec['reason']} (worst at V = {speeds[worst]:.4g} m/s)"}))
     result.extra["parts"] = parts
     result.seconds = time.perf_counter() - t0

@@ -16,6 +16,7 @@ from ..schema import PRESSURE, SCALARS, CaseError, close
 
 ADDS_METHODS = True  # verify --method NAME holds NAME to every gate the BEM is held to
 QUANTITIES = SCALARS + PRESSURE
+SHOWN = ("contact_radius", "indentation", "peak_pressure", "rolling_resistance")  # in the progress lines
 SECTIONS = ("analytic", "bem", "fem", "methods")
 
 
@@ -89,19 +90,22 @@ def _check_run(run, method: str) -> Run:
     return run
 
 
-def solve_methods(case: dict, result: CaseResult, ctx, problem: dict | None = None) -> None:
-    """Every method the gates use, on its levels; a method that fails is recorded in
-    ``result.extra["failed"]`` and its gates fail with the error."""
+def solve_methods(case: dict, result: CaseResult, ctx, problem: dict | None = None,
+                  names: list[str] | None = None) -> None:
+    """Every method the gates use (or ``names``), on its levels; a method that fails is
+    recorded in ``result.extra["failed"]`` and its gates fail with the error; the
+    Richardson estimate of every scalar of a method with three levels or more goes to
+    ``result.convergence``."""
     problem = case["problem"] if problem is None else problem
     failed = result.extra.setdefault("failed", {})
-    for name in _used(case):
+    for name in _used(case) if names is None else names:
         method = ctx.methods[name]
         runs = []
         try:
             for level in method.levels(case):
                 run = _check_run(method.solve(problem, level), name)
                 size = "" if run.size is None else f"h = {run.size * 1e3:.4g} mm: "
-                shown = ", ".join(f"{k} = {v:.6g}" for k, v in run.scalars.items() if k in SCALARS[:3])
+                shown = ", ".join(f"{k} = {v:.6g}" for k, v in run.scalars.items() if k in SHOWN)
                 ctx.progress(f"  {case['name']}: {name} {size}{shown} ({run.seconds:.1f} s)")
                 runs.append(run)
         except Exception as exc:  # one failing method fails its gates, not the suite

@@ -11,7 +11,7 @@ from ..metrics import fit_contact_radius
 from ..results import Level, Run
 from ..schema import Field, check_table
 
-__all__ = ["FIELDS", "check", "run", "run_line", "solve"]
+__all__ = ["FIELDS", "check", "run", "run_line", "run_rolling", "solve"]
 
 FIELDS = {
     "spacings": Field("numbers", True, positive=True, doc="node spacings a (m), coarse to fine"),
@@ -67,9 +67,45 @@ def run_line(problem_cfg: dict, settings: dict, spacing: float) -> Run:
     return Run("bem", spacing, scalars, np.asarray(res.x), np.asarray(res.pressure_profile), seconds)
 
 
+def run_rolling(problem_cfg: dict, settings: dict, spacing: float) -> Run:
+    """Steady rolling of a round indenter on one grid of node spacing ``spacing`` (m):
+    ``Run.r`` holds the signed ``x`` of the nodes on the line ``y = 0`` (m, ``x > 0``
+    ahead) and ``Run.pressure`` their pressure; the scalars add the contact's trailing
+    and leading edges on that line (m), the pressure centroid (m), the power the layer
+    dissipates (W, :func:`bem.energy.viscous_dissipation`, from the loss modulus) and the
+    pressure's work rate over V, ``sum F ds/dx`` (N, the indenter's exact slope by a
+    central difference), which the dissipation must balance."""
+    from bem.energy import viscous_dissipation
+    from bem.plane import edges_along
+
+    problem, res, seconds = _solve(problem_cfg, settings, spacing)
+    g = problem.grid
+    row = g.shape[0] // 2  # the grid is centred: a row of nodes on y = 0
+    trailing, leading = edges_along(g.x, g.spacing_x, res.force[row], res.gap[row])
+    zero = np.zeros_like(res.force)
+    X, Y = g.coordinates()
+    step = 1e-3 * g.spacing_x
+    slope = (problem.indenter.profile(X + step, Y) - problem.indenter.profile(X - step, Y)) / (2 * step)
+    scalars = {
+        "rolling_resistance": res.rolling_resistance,
+        "indentation": res.indentation,
+        "peak_pressure": res.peak_pressure,
+        "load": res.load,
+        "trailing_edge": trailing,
+        "leading_edge": leading,
+        "pressure_centroid_x": res.pressure_centroid_x,
+        "rolling_resistance_slope": float(np.sum(res.force * slope)),
+        "dissipation": viscous_dissipation(g, problem.layer, problem.loading.speed, -res.force, zero, zero),
+    }
+    return Run("bem", spacing, scalars, np.asarray(g.x), res.pressure[row], seconds, g, res.pressure)
+
+
 def solve(problem: dict, level: Level) -> Run:
     """The method protocol: the case's ``[problem]`` at one level of ``[bem] spacings``
-    (a line contact in plane strain for ``[indenter] shape = "line"``)."""
+    (a line contact in plane strain for ``[indenter] shape = "line"``; steady rolling on
+    the line ``y = 0`` for a round indenter with ``[loading] speed > 0``)."""
     if problem["indenter"].get("shape") == "line":
         return run_line(problem, level.settings, level.size)
+    if problem["loading"].get("speed", 0.0) > 0:
+        return run_rolling(problem, level.settings, level.size)
     return run(problem, level.settings, level.size)
