@@ -20,7 +20,9 @@ nothing. The traction of a nodal force spread on its patch (eq. 52) has the coef
 of eqs. 56-59. This is independent of the contact solver's nodal collocation and of the
 upwind derivative: it integrates the layer's own continuous fields.
 
-Cost: the isotropic layer is symmetric under ``y -> -y``, so
+Cost: with normal forces alone only ``C_ww`` is needed (``t^H C t = |t_z|^2 C_ww``), and
+it comes from the outer-grid normal compliance, fast for the many half-space modes. The
+isotropic layer is symmetric under ``y -> -y``, so
 ``C(nu_x, -nu_y) = D C(nu_x, nu_y) D`` with ``D = diag(1, 1, -1)`` (``v`` and ``tau_yz``
 change sign; checked to round-off against the closed form); the compliance is evaluated
 for ``n >= 0`` only and serves both halves.
@@ -31,7 +33,7 @@ from __future__ import annotations
 import numpy as np
 
 from .grid import Grid
-from .layer import Layer, surface_compliance
+from .layer import Layer, normal_compliance_outer, surface_compliance
 
 __all__ = ["viscous_dissipation"]
 
@@ -65,6 +67,8 @@ def viscous_dissipation(grid: Grid, layer: Layer, speed: float, force_z: np.ndar
     wy = np.sinc(n * g.spacing_y / g.period_y) / g.period_y
     e_pos = np.exp(-1j * np.outer(g.y, nu_y)) * wy  # (K_y, n), n >= 0
     e_neg = np.exp(1j * np.outer(g.y, nu_y[1:])) * wy[1:]  # (K_y, n), -n < 0
+    if not (F[1].any() or F[2].any()):
+        return _normal_dissipation(g, layer, speed, F[0], nu_x, nu_y, G, rho_V2, wx, e_pos, e_neg)
     flip = np.array([1.0, 1.0, -1.0])  # D = diag(1, 1, -1)
     total = 0.0
     for s in range(0, m.size, _CHUNK):
@@ -78,3 +82,14 @@ def viscous_dissipation(grid: Grid, layer: Layer, speed: float, force_z: np.ndar
         quad_n = np.einsum("mni,mnij,mnj->mn", tn.conj(), C[:, 1:], tn)
         total += float((nu_x[sl, None] * quad.imag).sum() + (nu_x[sl, None] * quad_n.imag).sum())
     return 2 * speed * g.period_x * g.period_y * total
+
+
+def _normal_dissipation(g: Grid, layer: Layer, speed: float, Fz, nu_x, nu_y, G, rho_V2, wx, e_pos, e_neg) -> float:
+    """:func:`viscous_dissipation` of normal forces alone: ``t^H C t = |t_z|^2 C_ww``, and
+    ``C_ww`` (even in ``nu_y``) from the fast outer-grid normal compliance."""
+    ex = np.exp(-1j * np.outer(nu_x, g.x)) * wx[:, None]  # (m, K_x)
+    rows = ex @ Fz.T  # (m, K_y)
+    power = np.abs(rows @ e_pos) ** 2  # (m, n >= 0)
+    power[:, 1:] += np.abs(rows @ e_neg) ** 2  # the modes (m, -n)
+    C_ww = normal_compliance_outer(nu_x, nu_y, G, rho_V2, layer.thickness)
+    return 2 * speed * g.period_x * g.period_y * float(np.sum(nu_x[:, None] * C_ww.imag * power))

@@ -1,0 +1,35 @@
+"""The dissipation of normal forces alone takes a fast path (only C_ww, from the outer-grid
+normal compliance, whose half-space modes use an expansion); it must equal the general
+path (all nine entries of the closed-form compliance) on any forces, layer and speed.
+The general path is forced by a tangential force of 1e-300 N, which adds nothing.
+Measured: equal to 2e-16 relative; tolerance 1e-12 (the expansion's stated 1e-12)."""
+
+import numpy as np
+import pytest
+
+from bem.energy import viscous_dissipation
+from bem.grid import Grid
+from bem.layer import Layer
+from bem.materials import Prony, ThreeParameterSolid
+
+GRID = Grid(0.7e-3, 0.9e-3, 0.02, 0.025, 40, 30, 7, 6)
+
+
+@pytest.mark.parametrize("thickness, density, speed", [
+    (5e-3, 0.0, 0.05),        # the loss peak region
+    (5e-3, 1000.0, 20.0),     # strong inertia (0.6 of the shear-wave speed)
+    (0.2, 0.0, 0.5),          # a thick layer: most modes take the half-space expansion
+    (2e-4, 0.0, 1e-3),        # a thin one
+])
+def test_normal_forces_take_the_fast_path_to_the_same_power(thickness, density, speed):
+    rng = np.random.default_rng(7)
+    material = Prony(1e6, (2e6, 5e5), (0.01, 0.3)) if density else ThreeParameterSolid(3e6, 0.25, 1.0)
+    layer = Layer(thickness, material, density)
+    Fz = -rng.random(GRID.shape)  # compressive
+    zero = np.zeros(GRID.shape)
+    tiny = zero.copy()
+    tiny[3, 4] = 1e-300
+    fast = viscous_dissipation(GRID, layer, speed, Fz, zero, zero)
+    general = viscous_dissipation(GRID, layer, speed, Fz, tiny, zero)
+    assert fast > 0
+    assert fast == pytest.approx(general, rel=1e-12)
