@@ -6,6 +6,8 @@ subdomains of the scikit-fem mesh.
 
 from __future__ import annotations
 
+import contextlib
+import io
 import os
 import tempfile
 from typing import Callable
@@ -61,7 +63,8 @@ def mesh_with_gmsh(build: Callable[[], None], volume_type: str, dim: int):
             path = os.path.join(tmp, "layer.msh")
             gmsh.option.setNumber("Mesh.MshFileVersion", 4.1)
             gmsh.write(path)
-            m = meshio.read(path)
+            with contextlib.redirect_stdout(io.StringIO()):  # meshio's msh reader prints a blank line
+                m = meshio.read(path)
         gmsh.model.remove()
     finally:
         if started:
