@@ -59,8 +59,7 @@ def mode_symbols(grid: Grid, layer: Layer, speed: float, blocks=("ww",)) -> dict
     n = np.arange(g.truncation_y + 1)
     nu_x = 2 * np.pi * m / g.period_x
     nu_y = 2 * np.pi * n / g.period_y
-    with np.errstate(over="ignore"):  # |omega| = inf is the glassy limit, finite in every material
-        G = np.asarray(layer.material.modulus(-nu_x * speed), dtype=complex)
+    G = _moduli(layer, nu_x, speed)
     weight = np.outer(np.sinc(m * g.spacing_x / g.period_x), np.sinc(n * g.spacing_y / g.period_y))
     weight /= g.period_x * g.period_y
     rho_V2 = layer.inertia(speed)
@@ -79,6 +78,12 @@ def mode_symbols(grid: Grid, layer: Layer, speed: float, blocks=("ww",)) -> dict
     with ThreadPoolExecutor(max_workers=min(2, os.cpu_count() or 1)) as pool:
         list(pool.map(work, starts))
     return out
+
+
+def _moduli(layer: Layer, nu_x: np.ndarray, speed: float) -> np.ndarray:
+    """``G*(omega_m)`` (Pa, complex) of the modes ``nu_x`` (rad/m), ``omega_m = -nu_x V``."""
+    with np.errstate(over="ignore"):  # |omega| = inf is the glassy limit, finite in every material
+        return np.asarray(layer.material.modulus(-nu_x * speed), dtype=complex)
 
 
 def chirp_sum(c: np.ndarray, ratio: float, j0: int, count: int) -> np.ndarray:
@@ -164,6 +169,120 @@ def kernels_from_symbols(grid: Grid, symbols: dict) -> dict:
     return out
 
 
+#: ``k H`` beyond which a mode does not see the base: the layer's compliance is the
+#: half-space's to ``exp(-k H) = 9e-27`` (:mod:`bem.layer` switches at 50)
+HALFSPACE_KH = 60.0
+
+
+def halfspace_symbols(nu_x: np.ndarray, nu_y: np.ndarray) -> dict:
+    """``G C_PQ`` (m) of an incompressible half-space without inertia, on the outer grid
+    ``nu_x[:, None], nu_y[None, :]`` (rad/m): real, ``0`` at ``k = 0``.
+
+    With ``q = k`` the Rayleigh function is ``4 k^3``, so ``G c_zz = G c_LL = 1 / (2 k)``,
+    ``G c_TT = 1 / k`` and the normal-tangential entries vanish: ``ww = 1 / (2 k)``,
+    ``uu = (nu_x^2 / 2 + nu_y^2) / k^3``, ``vv = (nu_x^2 + nu_y^2 / 2) / k^3 = 3 ww - uu``,
+    ``uv = vu = -nu_x nu_y / (2 k^3)`` (:func:`bem.layer.compliance_blocks` at ``k H > 50``).
+    Returned: ``ww, uu, uv``.
+    """
+    nx, ny = np.asarray(nu_x, float)[:, None], np.asarray(nu_y, float)[None, :]
+    k = np.hypot(nx, ny)
+    with np.errstate(divide="ignore"):
+        inv_k = np.where(k > 0, 1.0 / k, 0.0)
+    inv_k3 = inv_k * inv_k * inv_k
+    return {"ww": 0.5 * inv_k, "uu": (0.5 * nx * nx + ny * ny) * inv_k3, "uv": (-0.5 * nx) * ny * inv_k3}
+
+
+def _over_n(r: np.ndarray, odd: bool, ratio: float, count: int, chirp: bool) -> np.ndarray:
+    """``h(m, dy) = sum_{|n| <= N_t} g(m, n) exp(2 pi i ratio n dy)`` for ``|dy| < count``
+    (complex, ``(rows, 2 count - 1)``) of ``g(m, n) = r(m, n)`` for ``n >= 0`` (``r`` real or
+    complex) and ``g(m, -n) = -g(m, n)`` (``odd``) or ``+g(m, n)``."""
+    n = np.arange(r.shape[1])
+    if chirp:
+        coef = 2 * r.astype(complex)
+        coef[:, 0] = 0 if odd else r[:, 0]
+        S = chirp_sum(coef, ratio, -(count - 1), 2 * count - 1)
+        return 0.5 * (S - S[:, ::-1]) if odd else 0.5 * (S + S[:, ::-1])
+    ph = _turns(ratio, n, np.arange(count))  # (n, dy >= 0)
+    if odd:  # sum_n g (e^{i..} - e^{-i..}) = 2 i sum_{n>0} g sin
+        h = 1j * (r @ (2 * np.sin(ph)))
+        return np.concatenate([-h[:, :0:-1], h], axis=1)
+    T = 2 * np.cos(ph)
+    T[0] = 1.0
+    h = r @ T
+    return np.concatenate([h[:, :0:-1], h], axis=1).astype(complex)
+
+
+def _over_m(h: np.ndarray, ratio: float, count: int, chirp: bool) -> np.ndarray:
+    """``K(dy, dx) = Re sum_{|m| <= N_t} h(m, dy) exp(2 pi i ratio m dx)``, ``|dx| < count``,
+    from ``h`` on ``m >= 0`` (``h(-m) = conj h(m)``): real, ``(2 K_y - 1, 2 count - 1)``."""
+    m = np.arange(h.shape[0])
+    if chirp:
+        cm = 2 * h.T
+        cm[:, 0] = h[0]
+        return chirp_sum(cm, ratio, -(count - 1), 2 * count - 1).real
+    phx = _turns(ratio, np.arange(-(count - 1), count), m)  # (dx, m)
+    wm = np.full(m.size, 2.0)
+    wm[0] = 1.0
+    return ((np.cos(phx) * wm) @ h.real - (np.sin(phx) * wm) @ h.imag).T
+
+
+def _kernels_halfspace_split(grid: Grid, layer: Layer, speed: float, blocks: tuple) -> dict:
+    """The kernels without inertia (``rho V^2 = 0``), split into the half-space modes'
+    sum and a correction on the few modes that see the base (``k H <= HALFSPACE_KH``).
+
+    Without inertia a half-space mode's symbol is ``sinc_x sinc_y / (L_x L_y G(omega_m))``
+    times a real function of ``nu`` (:func:`halfspace_symbols`): the sum over ``n`` runs on
+    real numbers (one real matrix product, or chirp-z above :data:`_MATMUL_NODES` nodes)
+    before the factor ``1 / G`` of the row, the normal-tangential blocks have no
+    half-space part, ``vu = uv`` and ``vv = 3 ww - uu``. The modes near the origin take the
+    exact symbols (:func:`bem.layer.compliance_blocks`) less the half-space ones. The same
+    truncated sum as :func:`kernels_from_symbols`, to rounding.
+    """
+    g = grid
+    Kx, Ky = g.nodes_x, g.nodes_y
+    chirp = max(Kx, Ky) > _MATMUL_NODES
+    rx, ry = g.spacing_x / g.period_x, g.spacing_y / g.period_y
+    m, n = np.arange(g.truncation_x + 1), np.arange(g.truncation_y + 1)
+    nu_x, nu_y = 2 * np.pi * m / g.period_x, 2 * np.pi * n / g.period_y
+    G = _moduli(layer, nu_x, speed)
+    inv_G = 1.0 / G
+    wx = np.sinc(m * rx) / g.period_x
+    wy = np.sinc(n * ry) / g.period_y
+    need = {"ww": ("ww", "vv"), "uu": ("uu", "vv"), "uv": ("uv", "vu")}
+    parts = [b for b in ("ww", "uu", "uv") if any(t in blocks for t in need[b])]
+    H = {b: np.empty((m.size, 2 * Ky - 1), dtype=complex) for b in parts}
+
+    def work(start: int) -> None:
+        s = slice(start, min(start + _CHUNK, m.size))
+        sym = halfspace_symbols(nu_x[s], nu_y)
+        weight = np.outer(wx[s], wy)
+        for b in parts:
+            H[b][s] = _over_n(sym[b] * weight, b in _ODD_IN_NY, ry, Ky, chirp) * inv_G[s, None]
+
+    with ThreadPoolExecutor(max_workers=min(2, os.cpu_count() or 1)) as pool:
+        list(pool.map(work, range(0, m.size, _CHUNK)))
+    half = {b: _over_m(H[b], rx, Kx, chirp) for b in parts}
+    del H
+    if "vv" in blocks:
+        half["vv"] = 3 * half["ww"] - half["uu"]
+    if "vu" in blocks:
+        half["vu"] = half["uv"]
+    # the modes that see the base: exact less half-space symbols, summed by products
+    Mx = min(m.size, int(HALFSPACE_KH * g.period_x / (2 * np.pi * layer.thickness)) + 1)
+    My = min(n.size, int(HALFSPACE_KH * g.period_y / (2 * np.pi * layer.thickness)) + 1)
+    near = compliance_blocks(nu_x[:Mx, None], nu_y[None, :My], G[:Mx, None], 0.0, layer.thickness,
+                             blocks)
+    hs = halfspace_symbols(nu_x[:Mx], nu_y[:My])
+    hs["vv"], hs["vu"] = 3 * hs["ww"] - hs["uu"], hs["uv"]
+    weight = np.outer(wx[:Mx], wy[:My])
+    out = {}
+    for b in blocks:
+        corr = near[b] - hs[b] * inv_G[:Mx, None] if b in hs else near[b]
+        K = _over_m(_over_n(corr * weight, b in _ODD_IN_NY, ry, Ky, False), rx, Kx, False)
+        out[b] = K + half[b] if b in half else K
+    return out
+
+
 def influence_kernels(grid: Grid, layer: Layer, speed: float, blocks=("ww",)) -> dict:
     """Kernel tables of the requested blocks, by fast transforms.
 
@@ -188,7 +307,11 @@ def influence_kernels(grid: Grid, layer: Layer, speed: float, blocks=("ww",)) ->
     """
     if not (np.isfinite(speed) and speed >= 0):
         raise ValueError(f"speed must be finite and >= 0 m/s, got {speed!r}")
-    out = kernels_from_symbols(grid, mode_symbols(grid, layer, speed, blocks))
+    blocks = _check_blocks(blocks)
+    if layer.inertia(speed) == 0:
+        out = _kernels_halfspace_split(grid, layer, speed, blocks)
+    else:
+        out = kernels_from_symbols(grid, mode_symbols(grid, layer, speed, blocks))
     bad = [b for b, k in out.items() if not np.isfinite(k).all()]
     if bad:
         g = grid
