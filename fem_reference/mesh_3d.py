@@ -13,7 +13,7 @@ import math
 from ._deps import import_gmsh
 from .discretization import Discretization
 from .gmsh_io import mesh_with_gmsh
-from .mesh_axisym import _size_field
+from .mesh_axisym import size_field
 
 gmsh = import_gmsh()  # one clear ImportError if gmsh's system libraries are missing
 
@@ -50,6 +50,6 @@ def quarter_cylinder_mesh(thickness: float, disc: Discretization):
             gmsh.model.addPhysicalGroup(2, tags, name=name)
         vols = [tag for _, tag in gmsh.model.getEntities(3)]
         gmsh.model.addPhysicalGroup(3, vols, name="layer")
-        _size_field(dim_tags=("SurfacesList", groups["zone"]), disc=disc)
+        size_field(dim_tags=("SurfacesList", groups["zone"]), disc=disc)
 
     return mesh_with_gmsh(build, "tetra", 3)

@@ -14,7 +14,7 @@ from .gmsh_io import mesh_with_gmsh
 
 gmsh = import_gmsh()  # one clear ImportError if gmsh's system libraries are missing
 
-__all__ = ["axisymmetric_mesh"]
+__all__ = ["axisymmetric_mesh", "size_field"]
 
 
 def axisymmetric_mesh(thickness: float, disc: Discretization):
@@ -37,13 +37,17 @@ def axisymmetric_mesh(thickness: float, disc: Discretization):
                           ("zone", top), ("axis", axis)):
             gmsh.model.addPhysicalGroup(1, [tag], name=name)
         gmsh.model.addPhysicalGroup(2, [surf], name="layer")
-        _size_field(dim_tags=("CurvesList", [top]), disc=disc)
+        size_field(dim_tags=("CurvesList", [top]), disc=disc)
         gmsh.option.setNumber("Mesh.Algorithm", 6)
 
     return mesh_with_gmsh(build, "triangle", 2)
 
 
-def _size_field(dim_tags, disc: Discretization) -> None:
+def size_field(dim_tags, disc) -> None:
+    """Make the background size field h = min(h_c + grading * dist, h_far) (m) of the
+    current gmsh model, dist the distance to the entities ``dim_tags`` = (gmsh list
+    name, tags); ``disc`` gives ``mesh_size`` h_c (m), ``grading`` (-) and
+    ``far_size`` h_far (m). Sizes from points, boundaries and curvature are off."""
     field = gmsh.model.mesh.field
     dist = field.add("Distance")
     field.setNumbers(dist, dim_tags[0], dim_tags[1])

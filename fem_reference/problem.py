@@ -211,8 +211,9 @@ class ContactProblem:
 
     A sphere or a paraboloid is stationary elastic indentation (axisymmetric or 3D);
     a line indenter is plane strain and may roll (``loading.speed`` > 0) on an elastic,
-    Prony or three-parameter layer. ``fem.model`` left unset is filled in from the
-    indenter.
+    Prony or three-parameter layer; a sphere rolls (``loading.speed`` > 0) in the 3d
+    model (half box y >= 0, ``fem.upstream``, ``fem.downstream`` and ``fem.domain_radius``
+    the lateral extent). ``fem.model`` left unset is filled in from the indenter.
 
     Raises
     ------
@@ -245,7 +246,8 @@ class ContactProblem:
                              "by the axisymmetric or 3d model")
         if model != self.fem.model:
             object.__setattr__(self, "fem", replace(self.fem, model=model))
-        unused = (("domain_radius", "upstream and downstream"),) if line else \
+        rolling_3d = model == "3d" and self.loading.speed > 0
+        unused = (("domain_radius", "upstream and downstream"),) if line else () if rolling_3d else \
             (("upstream", "domain_radius"), ("downstream", "domain_radius"))
         for name, instead in unused:
             if getattr(self.fem, name) is not None:
@@ -254,18 +256,25 @@ class ContactProblem:
         if line and self.fem.solver != "direct":
             raise InputError(f"fem.solver = {self.fem.solver!r}: the plane-strain rolling system is "
                              "not symmetric and is solved by sparse LU only; use fem.solver = \"direct\"")
-        if not line:
+        if rolling_3d and self.fem.solver != "direct":
+            raise InputError(f"fem.solver = {self.fem.solver!r}: the 3d rolling system is not "
+                             "symmetric and is solved by sparse LU only; use fem.solver = \"direct\"")
+        if not line and not rolling_3d:
             if not isinstance(self.material, ElasticMaterial):
                 raise InputError(
                     f"fem-reference cannot solve [material] model = "
                     f"\"{_MODEL_NAMES[type(self.material)]}\" with [indenter] shape = "
                     f"\"{self.indenter.shape}\": the axisymmetric and 3d models are stationary "
-                    "and elastic; viscoelastic rolling is solved in plane strain (shape = \"line\")")
+                    "and elastic; viscoelastic rolling is solved in plane strain (shape = \"line\") "
+                    "or, for a sphere at [loading] speed > 0, by [fem] model = \"3d\"")
             if self.loading.speed != 0:
                 raise InputError(
                     f"[loading] speed must be 0 m/s: fem-reference solves stationary contact only "
-                    f"for [indenter] shape = \"{self.indenter.shape}\" (it rolls shape = \"line\", "
-                    f"plane strain), got {self.loading.speed!r}")
+                    f"for [indenter] shape = \"{self.indenter.shape}\" in the {model} model (a sphere "
+                    f"rolls in [fem] model = \"3d\", a line in plane strain), got {self.loading.speed!r}")
+        if rolling_3d and self.indenter.shape != "sphere":
+            raise InputError(f"indenter.shape = {self.indenter.shape!r}: the 3d rolling model "
+                             "(fem.model = \"3d\", loading.speed > 0) takes a sphere only")
         rho, V = self.layer.density, self.loading.speed
         if rho > 0 and V > 0:
             c_s = self.shear_wave_speed

@@ -68,7 +68,8 @@ def _top_vertices(system: LayerSystem, u: np.ndarray):
 def solve(problem: ContactProblem,
           progress: Optional[Callable[[str], None]] = None) -> ContactResult:
     """Solve the frictionless contact of ``problem``: stationary (axisymmetric or 3D),
-    or, for a line indenter, steady rolling in plane strain (:mod:`.rolling_solve`).
+    or steady rolling: of a line indenter in plane strain (:mod:`.rolling_solve`), of a
+    sphere in 3D (``fem.model = "3d"`` and ``loading.speed`` > 0, :mod:`.rolling3d_solve`).
 
     Parameters
     ----------
@@ -80,7 +81,8 @@ def solve(problem: ContactProblem,
     Returns
     -------
     ContactResult or RollingResult
-        A :class:`~.rolling_result.RollingResult` for a line indenter.
+        A :class:`~.rolling_result.RollingResult` for a line indenter, a
+        :class:`~.rolling3d_result.SphereRollingResult` for a rolling sphere.
 
     Raises
     ------
@@ -91,6 +93,10 @@ def solve(problem: ContactProblem,
         from .rolling_solve import solve_rolling
 
         return solve_rolling(problem, progress)
+    if problem.fem.model == "3d" and problem.loading.speed > 0:
+        from .rolling3d_solve import solve_rolling_3d
+
+        return solve_rolling_3d(problem, progress)
     say = progress or (lambda _: None)
     times = {}
     t0 = time.perf_counter()

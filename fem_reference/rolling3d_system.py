@@ -1,0 +1,199 @@
+"""Monolithic discretization of 3D steady rolling of a sphere on the half layer y >= 0.
+
+:func:`build_box_system` meshes the half box (:mod:`.mesh_box`), assembles the
+non-symmetric system of :mod:`.rolling3d_forms` on the unknowns [u (P2 vector), p (P1),
+(w_0 .. w_4) per Maxwell branch (continuous P1 scalars, SUPG)], removes the Dirichlet
+unknowns and assembles the mortar coupling C of the P1 contact multiplier with u_z on
+the candidate half disk, with the multiplier moments m = int phi dS (m^2), q = int phi s
+dS (m^3), mx = int phi x dS (m^3) and ms = int phi ds/dx dS (m^2).
+
+Dirichlet conditions: u = 0 on the base, the inflow and the outflow; w = 0 on the
+inflow (the material enters undeformed and relaxed); on the symmetry plane y = 0,
+u_y = 0 and the components odd in y, w_2 = eps_xy and w_4 = eps_yz, vanish (the
+restriction to y >= 0 of the mirror-symmetric solution; the branch equations transport
+along x only and need no other condition there). The lateral side y = lateral and the
+top outside the contact are traction free. SI units; the half layer carries half the
+load.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+from typing import List
+
+import numpy as np
+import scipy.sparse as sp
+from skfem import Basis, ElementTetP1, ElementTetP2, ElementVector, FacetBasis, asm, bmat
+
+from . import rolling3d_forms as rf
+from .materials import PronyMaterial, as_prony
+from .mesh_box import half_box_mesh
+from .problem import ContactProblem
+from .rolling3d_discretization import BoxDiscretization
+
+__all__ = ["BoxSystem", "build_box_system", "sphere_profile", "sphere_slope"]
+
+INTORDER = 4
+NC = rf.N_COMPONENTS
+#: components odd in y (eps_xy, eps_yz): zero on the symmetry plane
+ODD = (2, 4)
+
+
+def sphere_profile(x, y, R):
+    """Height s = R - sqrt(R^2 - x^2 - y^2) (m) of the sphere above its lowest point."""
+    r2 = np.asarray(x, float) ** 2 + np.asarray(y, float) ** 2
+    return r2 / (R + np.sqrt(R * R - r2))
+
+
+def sphere_slope(x, y, R):
+    """ds/dx = x / sqrt(R^2 - x^2 - y^2) (-)."""
+    x = np.asarray(x, float)
+    return x / np.sqrt(R * R - x * x - np.asarray(y, float) ** 2)
+
+
+@dataclass
+class BoxSystem:
+    """Assembled discrete half layer (see :class:`~.rolling_system.RollingSystem`).
+
+    Attributes
+    ----------
+    mesh, ubasis, pbasis, wbasis :
+        skfem mesh and bases (P2 vector, P1 pressure, P1 scalar strain).
+    S : sparse matrix
+        System matrix on the free unknowns (non-symmetric).
+    free : ndarray
+        Indices of the free unknowns in [u; p; w_0,1 .. w_4,1; w_0,2 ...].
+    offsets : list of int
+        Start of each block in the full vector.
+    C : sparse matrix (n_c, len(free))
+        Coupling of the multiplier nodes with the free unknowns.
+    m, q, mx, ms : ndarray (n_c,)
+        int phi dS (m^2), int phi s dS (m^3), int phi x dS (m^3), int phi ds/dx dS (m^2).
+    nodes : ndarray (n_c, 2)
+        (x, y) (m) of the multiplier nodes.
+    branches : list of (G_i, tau_i)
+        Maxwell branches (Pa, s).
+    scale : ndarray
+        Diagonal scale of the free unknowns for the direct solver.
+    """
+
+    mesh: object
+    ubasis: object
+    pbasis: object
+    wbasis: object
+    S: sp.spmatrix
+    free: np.ndarray
+    offsets: List[int]
+    C: sp.spmatrix
+    m: np.ndarray
+    q: np.ndarray
+    mx: np.ndarray
+    ms: np.ndarray
+    nodes: np.ndarray
+    branches: list
+    scale: np.ndarray
+    mesh_time: float
+    assembly_time: float
+
+    @property
+    def n_unknowns(self) -> int:
+        return len(self.free)
+
+    def split(self, x_free: np.ndarray):
+        """Full fields from a free-unknown vector: u (m), p (Pa) and, per branch, the
+        list of its five strain components."""
+        full = np.zeros(self.offsets[-1])
+        full[self.free] = x_free
+        o = self.offsets
+        u, p = full[o[0]:o[1]], full[o[1]:o[2]]
+        w = [[full[o[2 + NC * b + k]:o[3 + NC * b + k]] for k in range(NC)]
+             for b in range(len(self.branches))]
+        return u, p, w
+
+
+def _element_hx(mesh) -> np.ndarray:
+    xs = mesh.p[0, mesh.t]
+    return xs.max(axis=0) - xs.min(axis=0)
+
+
+def build_box_system(problem: ContactProblem, disc: BoxDiscretization) -> BoxSystem:
+    """Mesh and assemble the half layer of ``problem`` (module docstring)."""
+    t0 = time.perf_counter()
+    H = problem.layer.thickness
+    mesh = half_box_mesh(H, disc.contact_zone, disc.upstream, disc.downstream, disc.lateral, disc)
+    if disc.refine:
+        mesh = mesh.refined(disc.refine)
+    t1 = time.perf_counter()
+    mat = as_prony(problem.material)
+    branches = list(zip(mat.G, mat.tau)) if isinstance(mat, PronyMaterial) else []
+    V, rho = problem.loading.speed, problem.layer.density
+    ue = ElementVector(ElementTetP2())
+    ub = Basis(mesh, ue, intorder=INTORDER)
+    pb = Basis(mesh, ElementTetP1(), intorder=INTORDER)
+    wb = pb
+    Gg = mat.glassy_modulus
+    A = asm(rf.glassy_stiffness, ub, G=Gg, rho_v2=rho * V * V)
+    B = asm(rf.divergence, ub, pb)
+    nb = len(branches)
+    nblk = 2 + NC * nb
+    blocks = [[None] * nblk for _ in range(nblk)]
+    blocks[0][0], blocks[0][1], blocks[1][0] = A, -B.T, -B
+    hx = _element_hx(mesh)
+    nq = wb.X.shape[1]
+    for b, (Gi, ti) in enumerate(branches):
+        ell = V * ti
+        delta = np.repeat((hx / (2.0 * ell + hx))[:, None], nq, axis=1)
+        Aw = asm(rf.branch_advection, wb, G=Gi, ell=ell, delta=delta)
+        for k in range(NC):
+            j = 2 + NC * b + k
+            blocks[0][j] = asm(rf.branch_stress, wb, ub, G=Gi, comp=k)
+            blocks[j][0] = asm(rf.branch_source, ub, wb, G=Gi, ell=ell, delta=delta, comp=k)
+            blocks[j][j] = Aw
+    sizes = [ub.N, pb.N] + [wb.N] * (NC * nb)
+    offsets = list(np.concatenate([[0], np.cumsum(sizes)]).astype(int))
+    blocks[1][1] = sp.csr_matrix((pb.N, pb.N))
+    S_full = bmat(blocks, "csr")
+    dofs_y = ub.get_dofs("sym_y")
+    fixed = [np.unique(np.concatenate([ub.get_dofs(name).all()
+                                       for name in ("base", "inflow", "outflow")])),
+             dofs_y.all("u^2")]
+    inflow_w = wb.get_dofs("inflow").all()
+    sym_w = wb.get_dofs("sym_y").all()
+    for b in range(nb):
+        for k in range(NC):
+            o = offsets[2 + NC * b + k]
+            fixed.append(o + inflow_w)
+            if k in ODD:
+                fixed.append(o + sym_w)
+    fixed = np.unique(np.concatenate(fixed))
+    keep = np.ones(offsets[-1], bool)
+    keep[fixed] = False
+    free = np.flatnonzero(keep)
+    S = S_full[free][:, free].tocsr()
+
+    zone = mesh.boundaries["zone"]
+    fbu = FacetBasis(mesh, ue, facets=zone, intorder=6)
+    fbl = FacetBasis(mesh, ElementTetP1(), facets=zone, intorder=6)
+    lam_nodes = np.unique(mesh.facets[:, zone])
+    Cu = asm(rf.coupling, fbu, fbl).tocsr()[lam_nodes]
+    Cfull = sp.hstack([Cu, sp.csr_matrix((len(lam_nodes), offsets[-1] - ub.N))]).tocsr()
+    C = Cfull[:, free].tocsr()
+    xq = np.asarray(fbl.global_coordinates())
+    R = problem.indenter.radius
+    m = asm(rf.area, fbl)[lam_nodes]
+    q = asm(rf.weighted, fbl, f=sphere_profile(xq[0], xq[1], R))[lam_nodes]
+    mx = asm(rf.weighted, fbl, f=xq[0])[lam_nodes]
+    ms = asm(rf.weighted, fbl, f=sphere_slope(xq[0], xq[1], R))[lam_nodes]
+    nodes = mesh.p[:2, lam_nodes].T
+
+    Mp = asm(rf.pressure_mass, pb)
+    diag = np.abs(S.diagonal())
+    n_u_free = int(np.sum(free < offsets[1]))
+    p_free = free[(free >= offsets[1]) & (free < offsets[2])] - offsets[1]
+    diag[n_u_free:n_u_free + len(p_free)] = np.asarray(Mp.sum(axis=1)).ravel()[p_free] / (2.0 * Gg)
+    t2 = time.perf_counter()
+    return BoxSystem(mesh=mesh, ubasis=ub, pbasis=pb, wbasis=wb, S=S, free=free, offsets=offsets,
+                     C=C, m=np.asarray(m), q=np.asarray(q), mx=np.asarray(mx), ms=np.asarray(ms),
+                     nodes=nodes, branches=branches, scale=diag, mesh_time=t1 - t0,
+                     assembly_time=t2 - t1)
