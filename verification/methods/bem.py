@@ -60,10 +60,18 @@ def run(problem_cfg: dict, settings: dict, spacing: float) -> Run:
 def run_line(problem_cfg: dict, settings: dict, spacing: float) -> Run:
     """The plane-strain BEM (a line contact, per unit length) on one grid of node
     spacing ``spacing`` (m); ``Run.r`` holds the signed ``x`` of the nodes (m, ``x > 0``
-    ahead) and the scalars are per unit length (N/m)."""
-    _, res, seconds = _solve(problem_cfg, settings, spacing)
+    ahead) and the scalars are per unit length (N/m); a rolling one adds the power the
+    layer dissipates (W/m) and the pressure's work rate over V, ``sum F ds/dx`` (N/m)."""
+    problem, res, seconds = _solve(problem_cfg, settings, spacing)
     scalars = {q: getattr(res, q) for q in ("rolling_resistance", "rolling_resistance_energy", "indentation",
                                             "leading_edge", "trailing_edge", "peak_pressure", "load")}
+    speed = problem.loading.speed
+    if speed > 0:
+        x = np.asarray(res.x)
+        step = 1e-3 * spacing
+        slope = (problem.indenter.profile(x + step) - problem.indenter.profile(x - step)) / (2 * step)
+        scalars["rolling_resistance_slope"] = float(np.sum(np.asarray(res.force).ravel() * slope))
+        scalars["dissipation"] = res.rolling_resistance_energy * speed
     return Run("bem", spacing, scalars, np.asarray(res.x), np.asarray(res.pressure_profile), seconds)
 
 

@@ -70,6 +70,8 @@ def run_line(problem_cfg: dict, settings: dict, size: float) -> Run:
     seconds = time.perf_counter() - t
     scalars = {q: float(getattr(res, q)) for q in ("rolling_resistance", "indentation", "leading_edge",
                                                    "trailing_edge", "peak_pressure", "load", "dissipation")}
+    if res.speed > 0:  # the pressure's work rate over V, int p s'(x) dx (N/m)
+        scalars["rolling_resistance_slope"] = float(res.pressure_power) / res.speed
     return Run("fem", size, scalars, np.asarray(res.pressure_x), np.asarray(res.pressure), seconds)
 
 
