@@ -265,6 +265,9 @@ def run(case: dict, ctx) -> CaseResult:
                                          error=float(errs[worst]) if np.isfinite(errs).all() else math.nan,
                                          **{**common, "reason": f"{spec['reason']} (worst at V = {speeds[worst]:.4g} m/s)"}))
     result.extra["parts"] = parts
+    if "analytic" in case:  # Hunter between the swept speeds too, for the R_r(V) plot
+        dense = np.geomspace(min(speeds), max(speeds), 41)
+        result.extra["hunter_curve"] = (dense, [_hunter(case["problem"], V).rolling_resistance for V in dense])
     result.seconds = time.perf_counter() - t0
     return result
 
@@ -307,7 +310,8 @@ def figures(result: CaseResult, folder) -> list[str]:
             y = [r.scalars["rolling_resistance"] for r in runs]
             name = f"{'Hunter' if m == 'analytic' else m}{' ' + label if label else ''}"
             if m == "analytic":
-                ax.semilogx(speeds * tau / b0, y, "-", color="k", lw=1, label=name)
+                dense, curve = result.extra.get("hunter_curve", (speeds, y))
+                ax.semilogx(np.asarray(dense) * tau / b0, curve, "-", color="k", lw=1, label=name)
             else:
                 ax.semilogx(speeds * tau / b0, y, markers.get(m, "^") + ":", color=colour, mfc="none", lw=0.8,
                             ms=7 if m == "bem" else 9, label=name)
