@@ -16,7 +16,7 @@ from typing import Protocol
 import numpy as np
 from scipy.sparse.linalg import LinearOperator, gmres
 
-__all__ = ["LinearSystem", "LinearSolver"]
+__all__ = ["LinearSystem", "LinearSolver", "fgmres"]
 
 
 class LinearSystem(Protocol):
@@ -28,6 +28,96 @@ class LinearSystem(Protocol):
     def dense(self) -> np.ndarray: ...
 
     def matvec(self, x: np.ndarray) -> np.ndarray: ...
+
+
+def fgmres(matvec, b: np.ndarray, precondition=None, *, tol: float, restart: int = 100, maxiter: int = 100,
+           callback=None) -> tuple[np.ndarray, bool, int]:
+    """Flexible right-preconditioned restarted GMRES from ``x = 0``.
+
+    Minimises the true residual ``|b - A x|`` over ``x in span(z_1 .. z_j)``,
+    ``z_j = M v_j`` kept (so ``M`` may change from one application to the next, e.g. be
+    applied in single precision), with classical Gram-Schmidt by matrix products and a
+    second pass when the first lost more than half of the vector (Kahan's "twice is
+    enough"). Stops when the residual is at most ``tol`` (in the units of ``b``): the
+    recurrence's estimate inside a cycle, the recomputed residual at its end.
+
+    Parameters
+    ----------
+    matvec, precondition : callable
+        ``A x`` and ``M r`` (``None``: ``M = I``).
+    b : ndarray
+        Right-hand side.
+    tol : float
+        Absolute residual asked for (units of ``b``).
+    restart, maxiter : int
+        Cycle length and number of cycles.
+    callback : callable, optional
+        Called with the residual estimate after each iteration.
+
+    Returns
+    -------
+    x : ndarray
+    converged : bool
+    iterations : int
+    """
+    n = b.size
+    restart = max(1, min(restart, n))
+    x = np.zeros(n)
+    r = np.array(b, float)
+    beta = float(np.linalg.norm(r))
+    its = 0
+    if beta <= tol:
+        return x, True, 0
+    V = np.empty((restart + 1, n))
+    Z = np.empty((restart, n))
+    H = np.zeros((restart + 1, restart))
+    cs, sn = np.zeros(restart), np.zeros(restart)
+    for _ in range(maxiter):
+        V[0] = r / beta
+        g = np.zeros(restart + 1)
+        g[0] = beta
+        j = 0
+        for j in range(restart):
+            Z[j] = V[j] if precondition is None else precondition(V[j])
+            w = matvec(Z[j])
+            norm0 = float(np.linalg.norm(w))
+            h = V[:j + 1] @ w
+            w -= h @ V[:j + 1]
+            norm1 = float(np.linalg.norm(w))
+            if norm1 < 0.5 * norm0:  # reorthogonalise once
+                h2 = V[:j + 1] @ w
+                w -= h2 @ V[:j + 1]
+                h += h2
+                norm1 = float(np.linalg.norm(w))
+            H[:j + 1, j] = h
+            H[j + 1, j] = norm1
+            for i in range(j):  # the previous rotations on the new column
+                a, c = H[i, j], H[i + 1, j]
+                H[i, j], H[i + 1, j] = cs[i] * a + sn[i] * c, -sn[i] * a + cs[i] * c
+            a, c = H[j, j], H[j + 1, j]
+            rho = float(np.hypot(a, c))
+            cs[j], sn[j] = (1.0, 0.0) if rho == 0 else (a / rho, c / rho)
+            H[j, j], H[j + 1, j] = rho, 0.0
+            g[j + 1] = -sn[j] * g[j]
+            g[j] *= cs[j]
+            its += 1
+            if callback is not None:
+                callback(abs(g[j + 1]))
+            breakdown = norm1 <= 1e-14 * norm0
+            if not breakdown:
+                V[j + 1] = w / norm1
+            if abs(g[j + 1]) <= tol or breakdown:
+                break
+        k = j + 1
+        y = np.linalg.solve(np.triu(H[:k, :k]), g[:k]) if k > 0 else np.zeros(0)
+        x += y @ Z[:k]
+        r = b - matvec(x)
+        beta = float(np.linalg.norm(r))
+        if beta <= tol:
+            return x, True, its
+        if not np.isfinite(beta):
+            break
+    return x, False, its
 
 
 class LinearSolver:
@@ -60,9 +150,10 @@ class LinearSolver:
     """
 
     def __init__(self, dense_limit: int, rtol: float, *, restart: int = 100, maxiter: int = 100,
-                 correction: bool = False, error: type = RuntimeError):
+                 correction: bool = False, error: type = RuntimeError, flexible: bool = False):
         self.dense_limit, self.rtol, self.correction = dense_limit, rtol, correction
         self.restart, self.maxiter, self.error = restart, maxiter, error
+        self.flexible = flexible
         self.iterations, self.used_gmres = 0, False
 
     def __call__(self, system, guess: np.ndarray | None = None, *, rtol: float | None = None, what: str = "",
@@ -79,6 +170,8 @@ class LinearSolver:
                 raise self.error(f"singular system ({what or f'{n} unknowns'}): {exc}") from exc
         self.used_gmres = True
         prec = getattr(system, "precondition", None)
+        if self.flexible:
+            return self._fgmres(system, prec, guess, rtol, what, hint)
         M = None if prec is None else LinearOperator((n, n), matvec=prec, dtype=float)
         A = LinearOperator((n, n), matvec=system.matvec, dtype=float)
         count = [0]
@@ -94,3 +187,18 @@ class LinearSolver:
             raise self.error(f"GMRES did not reduce the residual by {rtol:.1e} on {what or f'{n} unknowns'} "
                              f"in {count[0]} iterations" + (f"; {hint}" if hint else ""))
         return x0 + x if self.correction else x
+
+    def _fgmres(self, system, prec, guess, rtol, what, hint):
+        """:func:`fgmres` on the correction to ``guess`` (or from zero), the residual
+        reduced by ``rtol``."""
+        n = system.n
+        x0 = np.zeros(n) if guess is None else np.asarray(guess, float)
+        b = system.b - system.matvec(x0) if guess is not None else system.b
+        ref = b if self.correction else system.b
+        x, ok, its = fgmres(system.matvec, b, prec, tol=rtol * float(np.linalg.norm(ref)), restart=self.restart,
+                            maxiter=self.maxiter)
+        self.iterations += its
+        if not ok or not np.isfinite(x).all():
+            raise self.error(f"GMRES did not reduce the residual by {rtol:.1e} on {what or f'{n} unknowns'} "
+                             f"in {its} iterations" + (f"; {hint}" if hint else ""))
+        return x0 + x

@@ -35,6 +35,7 @@ class RollingOperators:
         for b in DIFFERENCED:
             self.tables["d" + b] = upwind_table(kernels[b], grid.spacing_x)
         self._ops: dict = {}
+        self._stacked: dict = {}
 
     @property
     def diagonal(self) -> float:
@@ -58,15 +59,23 @@ class RollingOperators:
 
     def _convolve(self, names, N, Sx, Sy):
         """``sum_j sign_j K_j * f_j`` for each row of ``names`` (block names with signs,
-        ``-`` for the normal force ``-N``), sharing the three forward FFTs."""
+        ``-`` for the normal force ``-N``): one batched forward transform of the three
+        force fields, the signed spectra (stacked once per set of rows) multiplied in, one
+        batched inverse transform; an array ``(rows, K_y, K_x)``."""
         Ky, Kx = self.grid.shape
         emb = self.op("ww").embedding
-        F = [sfft.rfft2(np.asarray(f, float).reshape(Ky, Kx), s=emb, workers=-1) for f in (N, Sx, Sy)]
-        out = []
-        for row in names:
-            acc = sum(sign * self.op(name).spectrum * f for (sign, name), f in zip(row, F))
-            out.append(sfft.irfft2(acc, s=emb, workers=-1)[:Ky, :Kx])
-        return out
+        spectra = self._stacked.get(names)
+        if spectra is None:
+            spectra = np.stack([np.stack([sign * self.op(name).spectrum for sign, name in row]) for row in names])
+            self._stacked[names] = spectra
+        f = np.empty((3, Ky, Kx))
+        for i, a in enumerate((N, Sx, Sy)):
+            f[i] = np.asarray(a, float).reshape(Ky, Kx)
+        F = sfft.rfft2(f, s=emb, axes=(-2, -1), workers=-1)
+        acc = spectra[:, 0] * F[0]
+        acc += spectra[:, 1] * F[1]
+        acc += spectra[:, 2] * F[2]
+        return sfft.irfft2(acc, s=emb, axes=(-2, -1), workers=-1)[:, :Ky, :Kx]
 
     def fields(self, N, Sx, Sy):
         """Downward deflection (m) and upwind strains ``du/dx, dv/dx`` (-) on the grid from

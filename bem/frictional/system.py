@@ -135,6 +135,7 @@ class SetSystem:
         ops, V = setup.ops, setup.speed
         self.setup, self.ops = setup, ops
         C = self.C = np.flatnonzero(state.contact)
+        self.Cj, self.Ci = np.divmod(C, ops.grid.nodes_x)
         nC = self.nC = C.size
         self.free_d, self.free_om = setup.load is not None, setup.omega is None
         self.n = 3 * nC + self.free_d + self.free_om
@@ -217,5 +218,5 @@ class SetSystem:
 
     def matvec(self, x):
         N, Sx, Sy, _, _ = self.full(x)
-        gap, sx, sy = (f.ravel()[self.C, None] for f in self.ops.fields(N, Sx, Sy))
+        gap, sx, sy = self.ops.fields(N, Sx, Sy)[:, self.Cj, self.Ci, None]
         return self.rows(gap, self.ax * sx, self.ax * sy, x[:, None])[:, 0]
