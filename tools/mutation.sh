@@ -37,7 +37,8 @@ default_tests() {
             tests/unit/test_derivation_eq45.py ;;
         bem/energy.py) echo tests/unit/test_properties_layer.py ;;
         fem_reference/forms.py|fem_reference/postprocess.py|fem_reference/solve.py)
-            echo tests/unit/test_fem_contact.py tests/unit/test_fem_inputs.py tests/unit/test_mutation_kills_fem.py ;;
+            echo tests/unit/test_fem_contact.py tests/unit/test_fem_inputs.py tests/unit/test_mutation_kills_fem.py \
+                tests/unit/test_fem_failures.py ;;
         *) echo "no default test list for $1: give the test files" >&2; exit 2 ;;
     esac
 }

@@ -161,3 +161,180 @@ def test_fem_contact_radius_fit_reads_the_stated_band():
     with pytest.raises(ContactNotConvergedError, match=r"^the gap does not open outside the contact: the contact "
                        r"radius cannot be fitted \(refine fem.element_size\)$"):
         fem_fit(r_last, r, np.zeros_like(r), h, 3)  # touching everywhere: a flat line
+
+
+# --- fem_reference.solve: what the driver reports, checked against the mesh it returns ---
+
+def _thick_problem(**fem):
+    return ContactProblem(Layer(5e-3), ElasticMaterial(3e6), Indenter("paraboloid", 0.02),
+                          Loading(load=100.0), FemSettings(**fem))
+
+
+def _top_vertices_of(mesh, H, on_line):
+    """Vertices of the top surface z = H (and y = 0 in 3D), sorted by distance from the
+    axis: recomputed from the mesh coordinates, not by the solver's facet lookup."""
+    p = mesh.p
+    top = np.flatnonzero(np.isclose(p[-1], H, rtol=0, atol=1e-12 * H))
+    if on_line:
+        top = top[p[1, top] == 0.0]
+    r = np.hypot(p[0, top], p[1, top]) if p.shape[0] == 3 else np.abs(p[0, top])
+    return np.sort(r)
+
+
+@pytest.fixture(scope="module")
+def fine_solve():
+    """h = 0.1 mm: 70 candidate nodes, so the surface compliance takes two blocks of 64."""
+    import time
+
+    from fem_reference.discretization import resolve
+
+    lines = []
+    problem = _thick_problem(element_size=1e-4)
+    t0 = time.perf_counter()
+    res = solve(problem, lines.append)
+    return res, lines, resolve(problem), time.perf_counter() - t0
+
+
+def test_solve_reports_its_mesh_from_the_mesh_it_returns(fine_solve):
+    """MeshStats and the surface arrays against counts recomputed from the returned mesh:
+    bonded base (both components of the P2 displacement on its Vb vertices and Vb - 1 edge
+    midpoints) and axis (u_r on its Va vertices and Va - 1 midpoints, the corner shared)
+    are the fixed dofs."""
+    res, _, disc, _ = fine_solve
+    mesh, ub, pb = (res.fields[k] for k in ("mesh", "ubasis", "pbasis"))
+    assert set(res.fields) == {"mesh", "u", "p", "ubasis", "pbasis"}
+    Vb = int(np.sum(mesh.p[1] == 0.0))
+    Va = int(np.sum(mesh.p[0] == 0.0))
+    fixed = 2 * (2 * Vb - 1) + (2 * Va - 1) - 1
+    s = res.mesh
+    assert (s.model, s.elements, s.vertices) == ("axisymmetric", mesh.t.shape[1], mesh.p.shape[1])
+    assert (s.displacement_dofs, s.pressure_dofs) == (ub.N, pb.N) == (res.fields["u"].size, res.fields["p"].size)
+    assert s.unknowns == ub.N + pb.N - fixed
+    assert s.contact_nodes == res.radius.size == res.pressure.size == res.nodes.shape[0] == 70
+    np.testing.assert_array_equal(res.nodes[:, 0], res.radius)  # axisymmetric nodes are (r,)
+    assert (s.element_size, s.contact_zone, s.domain_radius, s.far_size) == (
+        1e-4, disc.contact_zone, disc.domain_radius, disc.far_size)
+    # the surface profile: top vertices by radius, closed gap at the centre (d + u_z = 0;
+    # measured 2e-4 relative at h = 0.1 mm, 2e-3 allowed)
+    np.testing.assert_array_equal(res.surface_radius, _top_vertices_of(mesh, 5e-3, on_line=False))
+    assert res.surface_uz.shape == res.surface_radius.shape
+    assert abs(res.surface_uz[0] + res.indentation) <= 2e-3 * res.indentation
+
+
+def test_solve_record_and_progress(fine_solve):
+    """The solver record against what the solve did: primal-dual iterations = entries of
+    the history, direct solver (no iterations), complementarity and linear residuals at
+    round-off (measured 6e-15 and 1.5e-14), stage times that add up within the total,
+    the total within the wall time; one progress line per stage and per block of 64
+    compliance columns, numbers as in the result."""
+    res, lines, disc, wall = fine_solve
+    r, s = res.solver, res.mesh
+    assert r.method == "primal-dual" and r.iterations == len(r.history) >= 2
+    assert r.history[-1] == int(np.sum(res.pressure > 0))
+    assert 0 <= r.residual < 1e-12 and 0 <= r.linear_residual < 1e-12
+    assert (r.linear_solver, r.linear_iterations) == ("direct", 0)
+    assert r.factor_nonzeros >= s.unknowns
+    stages = ("mesh", "assembly", "factorization", "compliance", "contact", "fields")
+    assert set(r.times) == set(stages) | {"total"}
+    assert all(0 <= r.times[k] <= r.times["total"] for k in stages)
+    assert sum(r.times[k] for k in stages) <= r.times["total"] <= wall
+    assert all(isinstance(line, str) for line in lines)
+    assert lines[0] == (f"axisymmetric: meshing (h = 1.000e-04 m in the zone r <= {disc.contact_zone:.3e} m, "
+                        f"domain radius {disc.domain_radius:.3e} m)")
+    assert lines[1] == f"{s.elements} elements, {s.unknowns} unknowns, 70 contact candidate nodes"
+    assert lines[2:4] == ["surface compliance: 64/70 columns", "surface compliance: 70/70 columns"]
+    assert sum(line.startswith("contact iteration ") for line in lines) == r.iterations
+    assert lines[-1].startswith(f"done: contact radius {res.contact_radius:.5e} m, indentation "
+                                f"{res.indentation:.5e} m, peak pressure {res.peak_pressure:.5e} Pa (")
+
+
+@pytest.mark.parametrize("n_c", [1, 64, 65, 130])
+def test_surface_compliance_in_blocks(n_c):
+    """W = C S^-1 C^T, symmetrized, against a dense product, whatever the number of
+    candidate nodes relative to the block of 64 columns; one progress line per block
+    when there is more than one block."""
+    from types import SimpleNamespace
+
+    import scipy.sparse as sp
+
+    from fem_reference.solve import _compliance
+
+    rng = np.random.default_rng(n_c)
+    n = 150
+    S = rng.standard_normal((n, n))
+    S = S @ S.T + n * np.eye(n)
+    C = sp.random(n_c, n, density=0.2, random_state=rng, format="csr") + sp.eye(n_c, n, format="csr")
+    lines = []
+    W = _compliance(SimpleNamespace(C=C), SimpleNamespace(solve=lambda b: np.linalg.solve(S, b)), lines.append)
+    Cd = C.toarray()
+    ref = Cd @ np.linalg.solve(S, Cd.T)
+    np.testing.assert_allclose(W, 0.5 * (ref + ref.T), rtol=1e-12, atol=1e-14 * np.abs(ref).max())
+    stops = [min(b + 64, n_c) for b in range(0, n_c, 64)] if n_c > 64 else []
+    assert lines == [f"surface compliance: {k}/{n_c} columns" for k in stops]
+
+
+@pytest.mark.parametrize("corrupt, value", [("diagonal", 0.0), ("diagonal", -1e-9), ("off-diagonal", np.nan)])
+def test_a_compliance_that_is_not_positive_is_an_error(monkeypatch, corrupt, value):
+    """A zero or negative diagonal entry, or a non-finite entry, of the surface compliance
+    (a singular layer model) stops the solve with the reason."""
+    import importlib
+
+    from fem_reference.errors import FemReferenceError
+
+    fs = importlib.import_module("fem_reference.solve")  # the module (the package exports the function)
+
+    real = fs._compliance
+
+    def broken(system, solver, progress):
+        W = real(system, solver, progress)
+        W[(3, 3) if corrupt == "diagonal" else (2, 5)] = value
+        return W
+
+    monkeypatch.setattr(fs, "_compliance", broken)
+    with pytest.raises(FemReferenceError, match=r"^the surface compliance is not positive: the layer model is "
+                       r"singular \(check the boundary conditions\)$"):
+        solve(_thick_problem(element_size=4e-4))
+
+
+def test_the_active_set_iteration_limit_reaches_the_same_contact():
+    """fem.max_iterations = 1 stops the primal-dual method after one step; the primal
+    method then finishes (and says so in the record) at the same contact (1e-9)."""
+    full = solve(_thick_problem(element_size=4e-4))
+    one = solve(_thick_problem(element_size=4e-4, max_iterations=1))
+    assert full.solver.method == "primal-dual" and full.solver.iterations > 1
+    assert one.solver.method == "primal-dual, then primal (iteration limit)"
+    assert one.contact_radius == pytest.approx(full.contact_radius, rel=1e-9)
+    assert one.indentation == pytest.approx(full.indentation, rel=1e-9)
+
+
+def test_three_dimensional_quarter_matches_the_axisymmetric_solve():
+    """The 3D quarter model carries a quarter of the load and reports the whole, and agrees
+    with the axisymmetric model on the same coarse mesh settings (H = 2 mm, h = 0.8 mm,
+    P = 5 N): contact radius measured -0.10% (0.5% allowed), indentation -0.7% (2%
+    allowed). Its surface profile is the radial line y = 0 of the top surface."""
+    kw = dict(element_size=0.8e-3, contact_zone=5e-3, domain_radius=12e-3, grading=0.6)
+
+    def problem(**fem):
+        return ContactProblem(Layer(2e-3), ElasticMaterial(3e6), Indenter("paraboloid", 0.02),
+                              Loading(load=5.0), FemSettings(**fem, **kw))
+
+    three = solve(problem(model="3d"))
+    axi = solve(problem())
+    assert three.mesh.model == "3d"
+    assert abs(three.load - 5.0) <= 1e-12 * 5.0
+    assert three.contact_radius == pytest.approx(axi.contact_radius, rel=5e-3)
+    assert three.indentation == pytest.approx(axi.indentation, rel=2e-2)
+    np.testing.assert_array_equal(three.surface_radius, _top_vertices_of(three.fields["mesh"], 2e-3, on_line=True))
+    assert abs(three.surface_uz[0] + three.indentation) <= 2e-2 * three.indentation
+
+
+def test_rolling_problems_go_to_the_rolling_solver_with_progress():
+    """A line indenter is solved by steady rolling in plane strain, which reports its
+    stages to the caller's progress (elastic, V = 0: symmetric, R_r = 0)."""
+    lines = []
+    res = solve(ContactProblem(Layer(1e-3), ElasticMaterial(3e6), Indenter("line", 0.02),
+                               Loading(load=500.0, speed=0.0), FemSettings(element_size=1e-4)), lines.append)
+    assert lines[0].startswith("plane_strain: meshing (h = 1.000e-04 m")
+    assert lines[-1].startswith("done: R_r ")
+    assert res.load == pytest.approx(500.0, rel=1e-12)
+    assert abs(res.leading_edge + res.trailing_edge) <= 1e-3 * res.contact_length
