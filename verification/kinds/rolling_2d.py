@@ -33,7 +33,8 @@ import numpy as np
 
 from ..formatting import fmt, new_figure
 from ..results import CaseResult, Gate, Run, Table
-from ..schema import CaseError, Field, check_table, close
+from ..schema import CaseError, Field, check_table
+from .gates import check_gate, check_methods, used_methods
 
 __all__ = ["errors", "scales"]
 
@@ -81,13 +82,11 @@ def _parts(case: dict):
         yield f"H/b0={x:g}", sub
 
 
+PSEUDO = ("analytic", "dissipation")  # references that are not methods
+
+
 def _used(case: dict) -> list[str]:
-    names = []
-    for gate in case["gates"]:
-        for m in gate["methods"] + [gate["against"]]:
-            if m not in ("analytic", "dissipation") and m not in names:
-                names.append(m)
-    return names
+    return used_methods(case, PSEUDO)
 
 
 def check(case: dict, path, methods: dict) -> None:
@@ -114,35 +113,15 @@ def check(case: dict, path, methods: dict) -> None:
             raise CaseError(f"{path} [analytic]: Hunter's solution has no inertia; set density = 0")
     for i, gate in enumerate(case["gates"]):
         where = f"{path} gates[{i}] ({gate['quantity']})"
-        for key in ("methods", "against"):
-            if key not in gate:
-                raise CaseError(f"{where}: '{key}' is required")
-        for key in ("levels", "limit"):
-            if key in gate:
-                raise CaseError(f"{where}: {key!r} does not apply to a rolling-2d case (the finest level is gated)")
-        q = gate["quantity"]
-        if q not in QUANTITIES:
-            raise CaseError(f"{where}: unknown quantity {q!r}; known: {', '.join(QUANTITIES)}{close(q, QUANTITIES)}")
-        for m in gate["methods"]:
-            if m not in methods:
-                raise CaseError(f"{where} methods: unknown method {m!r}; known: {', '.join(methods)}{close(m, methods)}")
-        against = gate["against"]
-        known = ["analytic", "dissipation", *methods]
-        if against not in known:
-            raise CaseError(f"{where} against: unknown reference {against!r}; known: {', '.join(known)}"
-                            f"{close(against, known)}")
+        check_gate(gate, where, QUANTITIES, methods, PSEUDO, levels=None, kind="rolling-2d")
+        q, against = gate["quantity"], gate["against"]
         if against == "analytic" and "analytic" not in case:
             raise CaseError(f"{where}: against = 'analytic' needs [analytic] reference = \"hunter\"")
         if against == "analytic" and q == "indentation":
             raise CaseError(f"{where}: a half-space in plane strain has no finite indentation")
         if against == "dissipation" and q != "rolling_resistance":
             raise CaseError(f"{where}: the energy balance checks rolling_resistance")
-    for name in _used(case):
-        method = methods[name]
-        if method.check is not None:
-            if not method.settings(case):
-                raise CaseError(f"{path}: the gates use {name!r} but the case has no [{method.section}]")
-            method.check(method.settings(case), problem, f"{path} [{method.section}]")
+    check_methods(case, path, _used(case), methods)
 
 
 def _hunter(problem: dict, speed: float):

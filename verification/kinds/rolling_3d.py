@@ -33,23 +33,18 @@ import numpy as np
 
 from ..formatting import fmt, new_figure
 from ..results import CaseResult, Gate, Run, Table
-from ..schema import CaseError, close
+from ..schema import LEVELS, CaseError
 from . import rolling_2d, stationary
+from .gates import check_gate, check_methods, used_methods
 
 ADDS_METHODS = True
 SECTIONS = ("bem", "fem", "methods")
 QUANTITIES = ("rolling_resistance", "indentation", "leading_edge", "trailing_edge", "peak_pressure",
               "pressure_centroid_x", "pressure_rms_interior")
-LEVELS = ("finest", "extrapolated")
 
 
 def _used(case: dict) -> list[str]:
-    names = []
-    for gate in case["gates"]:
-        for m in gate["methods"] + [gate["against"]]:
-            if m != "dissipation" and m not in names:
-                names.append(m)
-    return names
+    return used_methods(case, ("dissipation",))
 
 
 def check(case: dict, path, methods: dict) -> None:
@@ -62,45 +57,13 @@ def check(case: dict, path, methods: dict) -> None:
         raise CaseError(f"{path} [problem] loading: give the load (N)")
     for i, gate in enumerate(case["gates"]):
         where = f"{path} gates[{i}] ({gate['quantity']})"
-        for key in ("methods", "against"):
-            if key not in gate:
-                raise CaseError(f"{where}: '{key}' is required")
-        if "limit" in gate:
-            raise CaseError(f"{where}: 'limit' belongs to rolling-limits cases")
+        check_gate(gate, where, QUANTITIES, methods, ("dissipation",), levels=LEVELS)
         q = gate["quantity"]
-        if q not in QUANTITIES:
-            raise CaseError(f"{where}: unknown quantity {q!r}; known: {', '.join(QUANTITIES)}{close(q, QUANTITIES)}")
-        for m in gate["methods"]:
-            if m not in methods:
-                raise CaseError(f"{where} methods: unknown method {m!r}; known: {', '.join(methods)}{close(m, methods)}")
-        against = gate["against"]
-        known = ["dissipation", *methods]
-        if against not in known:
-            raise CaseError(f"{where} against: unknown reference {against!r}; known: {', '.join(known)}"
-                            f"{close(against, known)}")
-        if against in gate["methods"]:
-            raise CaseError(f"{where}: method {against!r} compared against itself")
-        if against == "dissipation" and q != "rolling_resistance":
+        if gate["against"] == "dissipation" and q != "rolling_resistance":
             raise CaseError(f"{where}: the energy balance checks rolling_resistance")
-        for level in gate.get("levels", ["finest"]):
-            if level not in LEVELS:
-                raise CaseError(f"{where} levels: {level!r} is not one of {', '.join(LEVELS)}{close(level, LEVELS)}")
-            if level == "extrapolated" and q == "pressure_rms_interior":
-                raise CaseError(f"{where}: only scalars are extrapolated, not {q!r}")
-    for name in _used(case):
-        method = methods[name]
-        if method.check is not None:
-            if not method.settings(case):
-                raise CaseError(f"{path}: the gates use {name!r} but the case has no [{method.section}]")
-            method.check(method.settings(case), problem, f"{path} [{method.section}]")
-        n = len(method.levels(case))
-        if n == 0:
-            raise CaseError(f"{path}: method {name!r} has no level for case {case['name']!r} ({method.origin})")
-        for i, gate in enumerate(case["gates"]):
-            uses = name in gate["methods"] or name == gate["against"]
-            if uses and "extrapolated" in gate.get("levels", []) and n < 3:
-                raise CaseError(f"{path} gates[{i}] ({gate['quantity']}): 'extrapolated' needs three levels "
-                                f"of {name!r}, the case gives {n}")
+        if "extrapolated" in gate.get("levels", []) and q == "pressure_rms_interior":
+            raise CaseError(f"{where}: only scalars are extrapolated, not {q!r}")
+    check_methods(case, path, _used(case), methods)
 
 
 def _at(result: CaseResult, method: str, level: str) -> Run:

@@ -12,7 +12,8 @@ from ..methods import references
 from ..formatting import fmt, new_figure
 from ..metrics import pressure_difference, richardson
 from ..results import CaseResult, Gate, Run, Table
-from ..schema import PRESSURE, SCALARS, CaseError, close
+from ..schema import PRESSURE, SCALARS, CaseError
+from .gates import check_gate, check_methods, used_methods
 
 ADDS_METHODS = True  # verify --method NAME holds NAME to every gate the BEM is held to
 QUANTITIES = SCALARS + PRESSURE
@@ -21,12 +22,7 @@ SECTIONS = ("analytic", "bem", "fem", "methods")
 
 
 def _used(case: dict) -> list[str]:
-    names = []
-    for gate in case["gates"]:
-        for m in gate.get("methods", []) + [gate.get("against", "")]:
-            if m and m not in ("analytic",) and m not in names:
-                names.append(m)
-    return names
+    return used_methods(case, ("analytic",))
 
 
 def check(case: dict, path, methods: dict) -> None:
@@ -37,20 +33,8 @@ def check(case: dict, path, methods: dict) -> None:
         references.check(case["analytic"], problem, f"{path} [analytic]")
     for i, gate in enumerate(case["gates"]):
         where = f"{path} gates[{i}] ({gate['quantity']})"
-        for key in ("methods", "against"):
-            if key not in gate:
-                raise CaseError(f"{where}: '{key}' is required")
-        if "limit" in gate:
-            raise CaseError(f"{where}: 'limit' belongs to rolling-limits cases")
-        q = gate["quantity"]
-        if q not in QUANTITIES:
-            raise CaseError(f"{where}: unknown quantity {q!r}; known: {', '.join(QUANTITIES)}{close(q, QUANTITIES)}")
-        against = gate["against"]
-        for m in gate["methods"]:
-            if m not in methods:
-                raise CaseError(f"{where} methods: unknown method {m!r}; known: {', '.join(methods)}{close(m, methods)}")
-            if m == against:
-                raise CaseError(f"{where}: method {m!r} compared against itself")
+        check_gate(gate, where, QUANTITIES, methods, ("analytic",))
+        q, against = gate["quantity"], gate["against"]
         if against == "analytic":
             if "analytic" not in case:
                 raise CaseError(f"{where}: against = 'analytic' needs an [analytic] reference")
@@ -58,26 +42,9 @@ def check(case: dict, path, methods: dict) -> None:
             if q in SCALARS and q not in references.REFERENCES[ref][1]:
                 raise CaseError(f"{where}: the {ref!r} solution gives no {q!r}; it gives "
                                 f"{', '.join(references.REFERENCES[ref][1])}")
-        elif against not in methods:
-            known = ["analytic", *methods]
-            raise CaseError(f"{where} against: unknown reference {against!r}; known: {', '.join(known)}{close(against, known)}")
-        levels = gate.get("levels", ["finest"])
-        if "extrapolated" in levels and q not in SCALARS:
+        if "extrapolated" in gate.get("levels", []) and q not in SCALARS:
             raise CaseError(f"{where}: only scalars are extrapolated, not {q!r}")
-    for name in _used(case):
-        method = methods[name]
-        if method.check is not None and not method.settings(case):
-            raise CaseError(f"{path}: the gates use {name!r} but the case has no [{method.section}] with its levels")
-        if method.check is not None:
-            method.check(method.settings(case), problem, f"{path} [{method.section}]")
-        n = len(method.levels(case))
-        if n == 0:
-            raise CaseError(f"{path}: method {name!r} has no level for case {case['name']!r} ({method.origin})")
-        for i, gate in enumerate(case["gates"]):
-            uses = name in gate["methods"] or (name == gate["against"])
-            if uses and "extrapolated" in gate.get("levels", []) and n < 3:
-                raise CaseError(f"{path} gates[{i}] ({gate['quantity']}): 'extrapolated' needs three levels "
-                                f"of {name!r}, the case gives {n}")
+    check_methods(case, path, _used(case), methods)
 
 
 def _check_run(run, method: str) -> Run:
