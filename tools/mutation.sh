@@ -36,6 +36,8 @@ default_tests() {
         bem/layer.py) echo tests/unit/test_layer.py tests/unit/test_properties_layer.py \
             tests/unit/test_derivation_eq45.py ;;
         bem/energy.py) echo tests/unit/test_properties_layer.py ;;
+        bem/contact.py) echo tests/unit/test_mutation_kills_contact.py tests/unit/test_contact.py \
+            tests/unit/test_properties_contact.py tests/unit/test_bem_displacement_control.py ;;
         fem_reference/forms.py|fem_reference/postprocess.py|fem_reference/solve.py)
             echo tests/unit/test_fem_contact.py tests/unit/test_fem_inputs.py tests/unit/test_mutation_kills_fem.py \
                 tests/unit/test_fem_failures.py ;;

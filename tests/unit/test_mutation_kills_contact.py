@@ -1,0 +1,264 @@
+"""bem.contact: the returned fields, record and messages recomputed from their definitions.
+
+Each solve's outputs are checked against quantities recomputed here from the returned
+forces with the operator (``u = C F``, ``h = s - d + u``, the complementarity residual,
+``R_r = sum F arm``, the pressure centroid), and the solver's parts (bordered system,
+coarse grid, edge mask, multilevel start) against their documented definitions. Small
+grids (21 x 21 dense; 45 x 45 for the multilevel start): about 2 s for the file.
+"""
+
+import math
+
+import numpy as np
+import pytest
+from scipy.ndimage import binary_dilation
+
+from bem.contact import (SHARED_SCALARS, ContactAtEdge, ContactNotConverged, NormalSystem, coarse_grid,
+                         edge_nodes, grid_summary, solve_normal)
+from bem.grid import Grid
+from bem.indenters import Sphere
+from bem.layer import Layer
+from bem.materials import Elastic, ThreeParameterSolid
+from bem.operator import ComplianceOperator
+from bem.spectral import influence_kernels
+
+SMALL = Grid.centred((0.5e-3, 0.5e-3), (0.2, 0.2), (200, 200), (5e-3, 5e-3))  # 21 x 21
+MID = Grid.centred((0.25e-3, 0.25e-3), (0.2, 0.2), (500, 500), (5.5e-3, 5.5e-3))  # 45 x 45
+SPHERE = Sphere(0.02)
+
+
+@pytest.fixture(scope="module")
+def rolling_small():
+    """The section 11 layer rolling at 0.05 m/s: a non-symmetric operator."""
+    layer = Layer(5e-3, ThreeParameterSolid(G0=3.0e6, tau=0.25, f=1.0), 1000.0)
+    return ComplianceOperator(SMALL, influence_kernels(SMALL, layer, 0.05)["ww"])
+
+
+@pytest.fixture(scope="module")
+def elastic_mid():
+    return ComplianceOperator(MID, influence_kernels(MID, Layer(5e-3, Elastic(3e6)), 0.0)["ww"])
+
+
+def _profile(grid):
+    X, Y = grid.coordinates()
+    return SPHERE.profile(X, Y), SPHERE.rolling_arm(X, Y), X
+
+
+def _residual(F, h, d):
+    """max(|h| on the contact, penetration elsewhere) / d, from the returned fields."""
+    on = F > 0
+    reach = np.isfinite(h)
+    return max(np.abs(h[on]).max(initial=0.0), (-h[reach & ~on]).max(initial=0.0)) / d
+
+
+def test_returned_fields_and_scalars_are_what_they_say(rolling_small):
+    """u = C F, h = s - d + u (inf where the indenter cannot touch), F >= 0, F h = 0,
+    P = sum F, R_r = sum F x / R, the record (one history entry per iteration, the last
+    the contact), the residual, the derived properties and the summary, all recomputed."""
+    op = rolling_small
+    s, arm, X = _profile(SMALL)
+    s[0, 0] = np.inf  # a corner the indenter cannot reach
+    lines = []
+    r = solve_normal(op, s, load=2.0, arm=arm, progress=lines.append)
+    F, a = r.force, SMALL.cell_area
+    np.testing.assert_allclose(r.deflection, op.apply(F), rtol=0, atol=1e-14 * np.abs(r.deflection).max())
+    assert np.isposinf(r.gap[0, 0])
+    h = np.where(np.isfinite(s), s - r.indentation + r.deflection, np.inf)
+    np.testing.assert_allclose(r.gap, h, rtol=0, atol=1e-15)
+    assert F.min() >= 0 and np.all(F[F > 0] * 0 == 0)
+    assert abs(r.load - 2.0) <= 1e-13 * 2.0 and r.load == float(F.sum())
+    assert r.rolling_resistance == pytest.approx(float((F * X).sum()) / 0.02, rel=1e-13)
+    assert r.rolling_resistance > 0  # passive material, rolling in +x
+    rec = r.record
+    assert rec.iterations == len(rec.history) == len(lines) >= 2
+    assert rec.history[-1] == int((F > 0).sum())
+    assert rec.linear_solver == "dense" and rec.linear_iterations == 0
+    assert rec.residual == _residual(F, r.gap, r.indentation) < 1e-12
+    # the progress lines: iteration, set size, indentation, nodes dropped and added
+    for it, (line, n) in enumerate(zip(lines, rec.history), start=1):
+        assert line.startswith(f"active set {it}: {n} nodes, d = ")
+    assert lines[-1] == f"active set {rec.iterations}: {rec.history[-1]} nodes, d = {r.indentation:.6e} m, -0 +0"
+    # properties
+    np.testing.assert_array_equal(r.pressure, F / a)
+    np.testing.assert_array_equal(r.contact, F > 0)
+    assert r.contact_area == (F > 0).sum() * a
+    assert r.contact_radius == pytest.approx(math.sqrt((F > 0).sum() * a / math.pi), rel=1e-15)
+    assert r.peak_pressure == F.max() / a
+    assert r.pressure_centroid_x == pytest.approx(float((F * X).sum() / F.sum()), rel=1e-13)
+    summary = r.summary()
+    assert set(summary) == set(SHARED_SCALARS) | {"grid", "solver"}
+    assert all(summary[k] == getattr(r, k) for k in SHARED_SCALARS)
+    assert summary["grid"] == grid_summary(SMALL) == {
+        "nodes": [21, 21], "spacing": [0.5e-3, 0.5e-3], "period": [0.2, 0.2], "truncation": [200, 200]}
+    assert summary["solver"] == {"iterations": rec.iterations, "residual": rec.residual,
+                                 "history": list(rec.history), "linear_solver": "dense",
+                                 "linear_iterations": 0}
+
+
+def test_no_arm_no_rolling_resistance(rolling_small):
+    s, _, _ = _profile(SMALL)
+    assert math.isnan(solve_normal(rolling_small, s, load=2.0).rolling_resistance)
+
+
+def test_displacement_control_fields(rolling_small):
+    """Under displacement control d is the given value and P = sum F follows; the same
+    contact as load control at that P (the same discrete problem)."""
+    s, _, _ = _profile(SMALL)
+    by_load = solve_normal(rolling_small, s, load=2.0)
+    r = solve_normal(rolling_small, s, indentation=by_load.indentation)
+    assert r.indentation == by_load.indentation
+    assert r.load == pytest.approx(2.0, rel=1e-12)
+    np.testing.assert_array_equal(r.contact, by_load.contact)
+    assert r.record.residual == _residual(r.force, r.gap, r.indentation) < 1e-12
+
+
+def test_bordered_system_is_the_stated_matrix(rolling_small):
+    """Load control: [[C_AA, -1], [c 1^T, 0]] with c = C_ii (the self-compliance, a
+    scale for the load row) and right side [-s_A, c P]; displacement control: C_AA and
+    d - s_A. The FFT product equals the dense matrix, and the preconditioner is the
+    identity on the border."""
+    op = rolling_small
+    idx = np.array([0, 5, 100, 220, 221, 440])
+    s_A = np.linspace(1e-6, 3e-6, idx.size)
+    K = op.dense(idx)
+    c = K[0, 0]
+    assert np.allclose(np.diag(K), c, rtol=1e-13)  # a translation-invariant operator
+    sys_p = NormalSystem(op, idx, s_A, 2.0, None)
+    M = np.block([[K, -np.ones((6, 1))], [np.full((1, 6), c), np.zeros((1, 1))]])
+    assert (sys_p.m, sys_p.n) == (6, 7)
+    np.testing.assert_allclose(sys_p.dense(), M, rtol=1e-14, atol=0)
+    np.testing.assert_allclose(sys_p.b, np.concatenate([-s_A, [c * 2.0]]), rtol=1e-15)
+    v = np.linspace(-1.0, 2.0, 7)
+    np.testing.assert_allclose(sys_p.matvec(v), M @ v, rtol=1e-12, atol=1e-12 * np.abs(M @ v).max())
+    assert sys_p.split(v) == (pytest.approx(v[:6]), v[6]) and isinstance(sys_p.split(v)[1], float)
+    pre = sys_p.precondition(v)
+    assert pre.shape == (7,) and pre[6] == v[6]
+    sys_d = NormalSystem(op, idx, s_A, None, 4e-6)
+    assert (sys_d.m, sys_d.n) == (6, 6)
+    np.testing.assert_allclose(sys_d.dense(), K, rtol=1e-15)
+    np.testing.assert_allclose(sys_d.b, 4e-6 - s_A, rtol=1e-15)
+    np.testing.assert_allclose(sys_d.matvec(v[:6]), K @ v[:6], rtol=1e-12, atol=1e-12 * np.abs(K @ v[:6]).max())
+    f, d = sys_d.split(v[:6])
+    assert d == 4e-6 and np.array_equal(f, v[:6])
+
+
+@pytest.mark.parametrize("shape, coarse", [
+    ((25, 25), (13, 13)),   # 625 nodes: the smallest grid with a coarse level
+    ((23, 27), None),       # 621 < 625 nodes
+    ((9, 71), (5, 36)),     # 9 a side is enough
+    ((7, 101), None),       # fewer than 9 a side
+    ((25, 26), None),       # even
+    ((26, 25), None),
+])
+def test_coarse_grid_is_every_other_node(shape, coarse):
+    Ky, Kx = shape
+    g = Grid(1e-3, 2e-3, 1.0, 1.0, 600, 300, Kx, Ky)
+    c = coarse_grid(g)
+    if coarse is None:
+        assert c is None
+        return
+    assert c.shape == coarse
+    assert (c.spacing_x, c.spacing_y, c.period_x, c.period_y, c.truncation_x, c.truncation_y) == (
+        2e-3, 4e-3, 1.0, 1.0, 600, 300)
+    np.testing.assert_allclose(c.x, g.x[::2], rtol=0, atol=1e-15)
+    np.testing.assert_allclose(c.y, g.y[::2], rtol=0, atol=1e-15)
+
+
+def test_edge_nodes():
+    e = edge_nodes((4, 5)).reshape(4, 5)
+    expected = np.ones((4, 5), bool)
+    expected[1:-1, 1:-1] = False
+    np.testing.assert_array_equal(e, expected)
+    np.testing.assert_array_equal(edge_nodes((1, 5)), [True, False, False, False, True])  # a line: its ends
+
+
+def test_multilevel_start_is_the_widened_coarse_contact(elastic_mid):
+    """On 45 x 45 nodes the first trial set is the contact of the same problem on every
+    other node, upsampled and widened by one node; from there the set converges in a few
+    iterations to the same contact as a start from every reachable node would."""
+    op = elastic_mid
+    s, _, _ = _profile(MID)
+    r = solve_normal(op, s, load=1.0)
+    coarse = solve_normal(ComplianceOperator(coarse_grid(MID), op.kernel[::2, ::2]), s[::2, ::2], load=1.0)
+    up = np.zeros(MID.shape, bool)
+    up[::2, ::2] = coarse.contact
+    start = binary_dilation(up, structure=np.ones((3, 3), bool))
+    assert r.record.history[0] == int(start.sum()) < MID.nodes_x * MID.nodes_y
+    assert r.record.iterations <= 4  # measured 2-3: the start is within one node of the answer
+    # under displacement control, the coarse problem at the same d
+    rd = solve_normal(op, s, indentation=r.indentation)
+    cd = solve_normal(ComplianceOperator(coarse_grid(MID), op.kernel[::2, ::2]), s[::2, ::2],
+                      indentation=r.indentation)
+    up[:] = False
+    up[::2, ::2] = cd.contact
+    assert rd.record.history[0] == int(binary_dilation(up, structure=np.ones((3, 3), bool)).sum())
+    np.testing.assert_array_equal(rd.contact, r.contact)
+
+
+def test_multilevel_start_keeps_out_unreachable_nodes(elastic_mid):
+    """Nodes the indenter cannot reach (inf profile) are never in a trial set: here every
+    node of a column through the contact."""
+    op = elastic_mid
+    s, _, _ = _profile(MID)
+    s[:, 23] = np.inf
+    r = solve_normal(op, s, load=1.0)
+    assert not r.contact[:, 23].any() and np.isposinf(r.gap[:, 23]).all()
+    assert r.record.residual < 1e-12
+    assert r.record.history[0] < MID.nodes_x * MID.nodes_y - MID.nodes_y
+
+
+def test_an_indentation_below_every_coarse_node_falls_back_to_the_overlap(elastic_mid):
+    """An indentation that reaches fine nodes but no coarse node (every other node): the
+    first set is the geometric overlap {s < d}."""
+    op = elastic_mid
+    s, _, _ = _profile(MID)
+    s[::2, ::2] += 1e-3  # lift the coarse nodes out of reach of d
+    d = 2e-6
+    r = solve_normal(op, s, indentation=d)
+    assert r.record.history[0] == int((s < d).sum())
+    assert r.indentation == d and r.load > 0
+
+
+@pytest.mark.parametrize("kw, message", [
+    ({}, r"^give exactly one of load \(N\) and indentation \(m\)$"),
+    ({"load": 1.0, "indentation": 1e-5}, r"^give exactly one of load \(N\) and indentation \(m\)$"),
+    ({"load": 0.0}, r"^load must be > 0 N, got 0\.0$"),
+    ({"load": -1.0}, r"^load must be > 0 N, got -1\.0$"),
+    ({"load": math.nan}, r"^load must be > 0 N, got nan$"),
+    ({"load": math.inf}, r"^load must be > 0 N, got inf$"),
+    ({"indentation": 0.0}, r"^indentation must be > 0 m, got 0\.0$"),
+    ({"indentation": math.inf}, r"^indentation must be > 0 m, got inf$"),
+    ({"indentation": math.nan}, r"^indentation must be > 0 m, got nan$"),
+])
+def test_bad_loading_messages(rolling_small, kw, message):
+    s, _, _ = _profile(SMALL)
+    with pytest.raises(ValueError, match=message):
+        solve_normal(rolling_small, s, **kw)
+
+
+def test_bad_profile_messages(rolling_small):
+    s, _, _ = _profile(SMALL)
+    with pytest.raises(ValueError, match=r"^profile must have the grid's shape \(21, 21\), got \(21, 20\)$"):
+        solve_normal(rolling_small, s[:, :20], load=1.0)
+    with pytest.raises(ValueError, match=r"^the indenter reaches no node of the grid$"):
+        solve_normal(rolling_small, np.full(SMALL.shape, np.inf), load=1.0)
+    with pytest.raises(ValueError, match=r"^indentation = 1e-06 m reaches no node: the indenter's lowest node "
+                       r"is 2e-06 m above its lowest point; increase loading.indentation or refine the grid$"):
+        solve_normal(rolling_small, s + 2e-6, indentation=1e-6)
+
+
+def test_contact_at_the_edge_names_the_region(rolling_small):
+    s, _, _ = _profile(SMALL)
+    with pytest.raises(ContactAtEdge, match=r"^the contact reaches the edge of the candidate region "
+                       r"\(\|x\| <= 0\.005 m, \|y\| <= 0\.005 m\): increase grid.half_width$"):
+        solve_normal(rolling_small, s, load=1000.0)
+
+
+def test_iteration_limit(rolling_small):
+    s, _, _ = _profile(SMALL)
+    full = solve_normal(rolling_small, s, load=2.0)
+    assert full.record.iterations >= 2
+    with pytest.raises(ContactNotConverged, match=r"^no converged contact set in 1 active-set iterations$"):
+        solve_normal(rolling_small, s, load=2.0, max_iter=1)
+    same = solve_normal(rolling_small, s, load=2.0, max_iter=full.record.iterations)
+    np.testing.assert_array_equal(same.force, full.force)
