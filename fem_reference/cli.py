@@ -7,7 +7,8 @@ m, ``indentation`` m, ``load`` N, ``peak_pressure`` Pa, ``mesh`` and
 ``load`` N/m, ``indentation`` m, ``rolling_resistance`` N/m,
 ``pressure_centroid_x``, ``leading_edge``, ``trailing_edge``, ``contact_length`` m,
 ``peak_pressure`` Pa, ``dissipation`` and ``pressure_power`` W/m,
-``energy_balance``), before any file is written. Output paths are checked before the
+``energy_balance``; for a sphere rolling in the 3d model the same in N and W, with
+``lateral_edge`` m and ``peak_memory`` bytes), before any file is written. Output paths are checked before the
 solve. Exit status 0 on success, 2 for bad input, 1 when the solve fails or an
 output could not be written.
 """
@@ -55,9 +56,12 @@ def main(argv: Optional[List[str]] = None) -> int:
         plot = casefile.check_output(args.plot, (".png", ".pdf", ".svg"), "--plot")
         vtu = casefile.check_output(args.vtu, (".vtu",), "--vtu")
         problem = load_case(args.case, args.set)
-        if problem.fem.model == "plane_strain" and (plot or vtu):
-            raise InputError("--plot and --vtu are not available for a line (plane-strain) case yet; "
-                             "use --json (pressure profile: the Python result's pressure_x, pressure)")
+        rolling = problem.fem.model == "plane_strain" or \
+            (problem.fem.model == "3d" and problem.loading.speed > 0)
+        if rolling and (plot or vtu):
+            raise InputError("--plot and --vtu are not available for a rolling case (plane strain or "
+                             "3d sphere) yet; use --json (pressure profile: the Python result's "
+                             "pressure_x, pressure)")
     except (InputError, casefile.CaseFileError) as exc:
         print(f"fem-reference: error: {exc}", file=sys.stderr)
         return 2
@@ -74,14 +78,17 @@ def main(argv: Optional[List[str]] = None) -> int:
         print(json.dumps(summary, indent=2, allow_nan=False))
     elif isinstance(result, RollingResult):
         eb = summary["energy_balance"]
-        print(f"speed              {result.speed:.6e} m/s\nload               {result.load:.6e} N/m\n"
+        per = "" if result.mesh.model == "3d" else "/m"
+        where = " (y = 0)" if result.mesh.model == "3d" else ""
+        print(f"speed              {result.speed:.6e} m/s\nload               {result.load:.6e} N{per}\n"
               f"indentation        {result.indentation:.6e} m\n"
-              f"rolling resistance {result.rolling_resistance:.6e} N/m\n"
-              f"contact edges      {result.trailing_edge:.6e} .. {result.leading_edge:.6e} m\n"
+              f"rolling resistance {result.rolling_resistance:.6e} N{per} (D/V "
+              f"{result.rolling_resistance_energy:.6e} N{per})\n"
+              f"contact edges{where} {result.trailing_edge:.6e} .. {result.leading_edge:.6e} m\n"
               f"peak pressure      {result.peak_pressure:.6e} Pa\n"
-              f"dissipation        {result.dissipation:.6e} W/m (energy balance "
+              f"dissipation        {result.dissipation:.6e} W{per} (energy balance "
               f"{'n/a' if eb is None else f'{eb:+.2e}'})\n"
-              f"plane_strain: {result.mesh.unknowns} unknowns, "
+              f"{result.mesh.model}: {result.mesh.unknowns} unknowns, "
               f"{result.solver.iterations} active-set iterations")
     else:
         print(f"contact radius {result.contact_radius:.6e} m\nindentation    "

@@ -260,6 +260,11 @@ class ContactProblem:
             raise InputError(f"fem.solver = {self.fem.solver!r}: the 3d rolling system is not "
                              "symmetric and is solved by sparse LU only; use fem.solver = \"direct\"")
         if not line and not rolling_3d:
+            if self.loading.speed != 0:
+                raise InputError(
+                    f"[loading] speed must be 0 m/s: fem-reference solves stationary contact only "
+                    f"for [indenter] shape = \"{self.indenter.shape}\" in the {model} model (a sphere "
+                    f"rolls in [fem] model = \"3d\", a line in plane strain), got {self.loading.speed!r}")
             if not isinstance(self.material, ElasticMaterial):
                 raise InputError(
                     f"fem-reference cannot solve [material] model = "
@@ -267,11 +272,6 @@ class ContactProblem:
                     f"\"{self.indenter.shape}\": the axisymmetric and 3d models are stationary "
                     "and elastic; viscoelastic rolling is solved in plane strain (shape = \"line\") "
                     "or, for a sphere at [loading] speed > 0, by [fem] model = \"3d\"")
-            if self.loading.speed != 0:
-                raise InputError(
-                    f"[loading] speed must be 0 m/s: fem-reference solves stationary contact only "
-                    f"for [indenter] shape = \"{self.indenter.shape}\" in the {model} model (a sphere "
-                    f"rolls in [fem] model = \"3d\", a line in plane strain), got {self.loading.speed!r}")
         if rolling_3d and self.indenter.shape != "sphere":
             raise InputError(f"indenter.shape = {self.indenter.shape!r}: the 3d rolling model "
                              "(fem.model = \"3d\", loading.speed > 0) takes a sphere only")

@@ -1,0 +1,152 @@
+"""3D steady rolling of a rigid sphere (fem_reference, fem.model = "3d"): the paper's
+section 11 example without friction, mesh convergence, domain-size check, time and
+memory, and the BEM's R_r.
+
+The case: R = 20 mm, P = 150 N, H = 5 mm, rho = 1000 kg/m^3, three-parameter solid
+G0 = 3 MPa, f = 1, tau = 0.25 s, V = 0.05 m/s (examples/paper-section11-frictionless.toml);
+the BEM (paper's Table 1, reproduced by ``bem solve``) gives R_r = 3.0257 N.
+
+Levels are systematic refinements of one graded mesh: at level s the zone size is
+h0 / s, the grading g0 / s and the far size H / s (every local size divided by s), with
+s = r^k, r = 2^(1/3) (about twice the elements per level). Each level runs in its own
+process (its time and peak memory alone). Richardson from the last three levels:
+p = ln((f1 - f2) / (f2 - f3)) / ln r, f_inf = f3 + (f3 - f2) / (r^p - 1).
+
+Usage::
+
+    python benchmarks/fem_rolling_3d.py [--levels 3] [--h0 1e-3] [--domain] [--bem]
+                                        [--json out.json]
+
+``--domain`` adds a solve at the first level with upstream, downstream and lateral
+lengths doubled; ``--bem`` runs ``bem solve`` on the case for its R_r.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import os
+import subprocess
+import sys
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+CASE = os.path.join(ROOT, "examples", "paper-section11-frictionless.toml")
+BEM_TABLE1 = 3.0257  # N, the paper's Table 1 (frictionless)
+H = 5e-3
+RATIO = 2.0 ** (1.0 / 3.0)
+KEYS = ("rolling_resistance", "rolling_resistance_energy", "indentation", "leading_edge",
+        "trailing_edge", "contact_length", "pressure_centroid_x", "energy_balance")
+
+
+def one(h: float, grading: float, far: float, scale_domain: float) -> dict:
+    """One solve in this process; a JSON-ready dict."""
+    from fem_reference import (ContactProblem, FemSettings, Indenter, Layer, Loading,
+                               ThreeParameterMaterial, solve)
+    from fem_reference.rolling3d_discretization import resolve_box
+
+    base = ContactProblem(Layer(H, 1000.0), ThreeParameterMaterial(3e6, 0.25, 1.0),
+                          Indenter("sphere", 0.02), Loading(load=150.0, speed=0.05),
+                          FemSettings(model="3d", element_size=h, grading=grading, far_size=far))
+    disc = resolve_box(base)
+    fem = FemSettings(model="3d", element_size=h, grading=grading, far_size=far,
+                      upstream=scale_domain * disc.upstream,
+                      downstream=scale_domain * disc.downstream,
+                      domain_radius=scale_domain * disc.lateral)
+    problem = ContactProblem(base.layer, base.material, base.indenter, base.loading, fem)
+    t0 = time.perf_counter()
+    r = solve(problem)
+    wall = time.perf_counter() - t0
+    s = r.summary()
+    out = {k: s[k] for k in KEYS}
+    out.update(h=h, grading=grading, far=far, domain_scale=scale_domain, wall=wall,
+               unknowns=r.mesh.unknowns, elements=r.mesh.elements,
+               contact_nodes=r.mesh.contact_nodes, factor_nonzeros=r.solver.factor_nonzeros,
+               linear_solver=r.solver.linear_solver, times=r.solver.times,
+               peak_memory=r.peak_memory, factor_memory=s["factor_memory"],
+               upstream=r.mesh.upstream, downstream=r.mesh.downstream, lateral=r.mesh.lateral,
+               lateral_edge=r.lateral_edge)
+    return out
+
+
+def _child(h, grading, far, scale_domain):
+    cmd = [sys.executable, __file__, "--one", repr(h), repr(grading), repr(far), repr(scale_domain)]
+    res = subprocess.run(cmd, capture_output=True, text=True, check=False)
+    if res.returncode != 0:
+        raise RuntimeError(f"level h = {h} failed:\n{res.stderr[-2000:]}")
+    return json.loads(res.stdout.strip().splitlines()[-1])
+
+
+def richardson(f1, f2, f3, r=RATIO):
+    """Observed order p and extrapolated value from three levels (coarse to fine), or
+    (nan, nan) when the differences do not shrink monotonically."""
+    d1, d2 = f1 - f2, f2 - f3
+    if d1 == 0 or d2 == 0 or d1 * d2 < 0 or abs(d2) >= abs(d1):
+        return float("nan"), float("nan")
+    p = math.log(d1 / d2) / math.log(r)
+    return p, f3 + d2 / (r ** p - 1.0)
+
+
+def bem_rr() -> float:
+    res = subprocess.run([os.path.join(os.path.dirname(sys.executable), "bem"), "solve", CASE,
+                          "--json"], capture_output=True, text=True, check=True)
+    return float(json.loads(res.stdout)["rolling_resistance"])
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--levels", type=int, default=3)
+    ap.add_argument("--first", type=int, default=0, help="index k of the coarsest level")
+    ap.add_argument("--h0", type=float, default=1.0e-3)
+    ap.add_argument("--g0", type=float, default=0.3)
+    ap.add_argument("--domain", action="store_true")
+    ap.add_argument("--bem", action="store_true")
+    ap.add_argument("--json", default=None)
+    ap.add_argument("--one", nargs=4, type=float, help=argparse.SUPPRESS)
+    args = ap.parse_args(argv)
+    if args.one:
+        print(json.dumps(one(*args.one)))
+        return 0
+    rows = []
+    for k in range(args.first, args.first + args.levels):
+        s = RATIO ** k
+        row = _child(args.h0 / s, args.g0 / s, H / s, 1.0)
+        row["level"] = k
+        rows.append(row)
+        print(f"level {k}: h = {row['h'] * 1e3:.3f} mm, {row['unknowns']} unknowns, "
+              f"{row['contact_nodes']} nodes: R_r {row['rolling_resistance']:.5f} N, D/V "
+              f"{row['rolling_resistance_energy']:.5f} N, d {row['indentation'] * 1e3:.5f} mm, "
+              f"edges [{row['trailing_edge'] * 1e3:.4f}, {row['leading_edge'] * 1e3:.4f}] mm, "
+              f"balance {row['energy_balance']:+.2e}, {row['wall']:.0f} s, "
+              f"peak {row['peak_memory'] / 2 ** 20:.0f} MiB", flush=True)
+    out = {"levels": rows, "ratio": RATIO, "bem_table1": BEM_TABLE1}
+    if len(rows) >= 3:
+        rich = {}
+        for key in KEYS[:-1]:
+            p, f = richardson(*(row[key] for row in rows[-3:]))
+            rich[key] = {"order": p, "extrapolated": f,
+                         "error_estimate_finest": (rows[-1][key] - f) if f == f else float("nan")}
+            print(f"Richardson {key}: order {p:.2f}, extrapolated {f:.6g}", flush=True)
+        out["richardson"] = rich
+    if args.domain:
+        s = RATIO ** args.first
+        for scale in (2.0,):  # against the first level (the same mesh sizes)
+            row = _child(args.h0 / s, args.g0 / s, H / s, scale)
+            out.setdefault("domain", []).append(row)
+            print(f"domain x{scale:g}: R_r {row['rolling_resistance']:.6f} N, D/V "
+                  f"{row['rolling_resistance_energy']:.6f} N, d {row['indentation'] * 1e3:.6f} mm, "
+                  f"edges [{row['trailing_edge'] * 1e3:.5f}, {row['leading_edge'] * 1e3:.5f}] mm, "
+                  f"{row['unknowns']} unknowns, {row['wall']:.0f} s", flush=True)
+    if args.bem:
+        out["bem"] = bem_rr()
+        print(f"bem solve: R_r {out['bem']:.5f} N", flush=True)
+    if args.json:
+        with open(args.json, "w") as fh:
+            json.dump(out, fh, indent=1)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
