@@ -48,11 +48,12 @@ class LinePreconditioner:
     few BLAS calls, not one call per line. ``factorised`` counts the lines inverted.
     """
 
-    def __init__(self, pad: int = 8):
+    def __init__(self, pad: int = 8, dtype=np.float32):
         self._cache: dict = {}
         self._batches: tuple = (None, None)
         self.factorised = 0
         self.pad = pad
+        self.dtype = dtype
 
     def attach(self, system: SetSystem) -> None:
         Kx = system.ops.grid.nodes_x
@@ -79,8 +80,8 @@ class LinePreconditioner:
         for size, members in (groups.items() if not batches else ()):
             L = len(members)
             idx_n, idx_t = np.full((L, size), n), np.full((L, 2 * size), n)  # padding: slot n
-            inv_n, inv_t = np.zeros((L, size, size)), np.zeros((L, 2 * size, 2 * size))
-            coup = np.zeros((L, 2 * size))  # -mu diag on the slip nodes' e . S rows
+            inv_n, inv_t = np.zeros((L, size, size), self.dtype), np.zeros((L, 2 * size, 2 * size), self.dtype)
+            coup = np.zeros((L, 2 * size), self.dtype)  # -mu diag on the slip nodes' e . S rows
             for b, (J, key, (a_n, a_t, c)) in enumerate(members):
                 m = J.size
                 idx_n[b, :m] = J
@@ -91,7 +92,7 @@ class LinePreconditioner:
         self._cache = cache
         self._batches = (whole, batches)
         om_step = 1.0 / system.ax  # the inverse of the scaled Omega's stick-row coefficient
-        ext = np.zeros(n + 1)
+        ext = np.zeros(n + 1, self.dtype)
 
         def precondition(r):
             ext[:n] = r
