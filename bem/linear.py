@@ -138,6 +138,13 @@ class LinearSolver:
         GMRES restart length and number of restarts.
     error : type
         Exception class raised when a solve fails.
+    flexible : bool
+        GMRES by :func:`fgmres` (right preconditioning, the true residual) instead of
+        SciPy's (left preconditioning).
+    floor : float
+        :func:`fgmres` only: a residual below ``floor |b|`` is good enough whatever
+        ``rtol`` asks (-): a correction whose residual is already near rounding is not
+        reduced ten more orders.
     what : str
         Names the system in error messages (``"3 x 1977 unknowns of the stick/slip set"``).
 
@@ -150,10 +157,11 @@ class LinearSolver:
     """
 
     def __init__(self, dense_limit: int, rtol: float, *, restart: int = 100, maxiter: int = 100,
-                 correction: bool = False, error: type = RuntimeError, flexible: bool = False):
+                 correction: bool = False, error: type = RuntimeError, flexible: bool = False,
+                 floor: float = 0.0):
         self.dense_limit, self.rtol, self.correction = dense_limit, rtol, correction
         self.restart, self.maxiter, self.error = restart, maxiter, error
-        self.flexible = flexible
+        self.flexible, self.floor = flexible, floor
         self.iterations, self.used_gmres = 0, False
 
     def __call__(self, system, guess: np.ndarray | None = None, *, rtol: float | None = None, what: str = "",
@@ -195,7 +203,8 @@ class LinearSolver:
         x0 = np.zeros(n) if guess is None else np.asarray(guess, float)
         b = system.b - system.matvec(x0) if guess is not None else system.b
         ref = b if self.correction else system.b
-        x, ok, its = fgmres(system.matvec, b, prec, tol=rtol * float(np.linalg.norm(ref)), restart=self.restart,
+        tol = max(rtol * float(np.linalg.norm(ref)), self.floor * float(np.linalg.norm(system.b)))
+        x, ok, its = fgmres(system.matvec, b, prec, tol=tol, restart=self.restart,
                             maxiter=self.maxiter)
         self.iterations += its
         if not ok or not np.isfinite(x).all():
