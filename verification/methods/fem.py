@@ -12,7 +12,7 @@ from ..metrics import fit_contact_radius
 from ..results import Level, Run
 from ..schema import CaseError, Field, check_table
 
-__all__ = ["FIELDS", "check", "run", "run_line", "solve"]
+__all__ = ["FIELDS", "check", "run", "run_line", "run_rolling", "solve"]
 
 FIELDS = {
     "element_sizes": Field("numbers", True, positive=True, doc="element sizes at the contact (m), coarse to fine"),
@@ -75,9 +75,32 @@ def run_line(problem_cfg: dict, settings: dict, size: float) -> Run:
     return Run("fem", size, scalars, np.asarray(res.pressure_x), np.asarray(res.pressure), seconds)
 
 
+def run_rolling(problem_cfg: dict, settings: dict, size: float) -> Run:
+    """Steady rolling of a sphere with the 3D FEM (half layer ``y >= 0``) with element
+    size ``size`` (m) at the contact: ``Run.r`` holds the ``x`` (m, ``x > 0`` ahead) of the
+    multiplier nodes on ``y = 0`` and ``Run.pressure`` their pressure (Pa); the scalars
+    are totals over the whole layer (N, m, W), with ``rolling_resistance_slope`` the
+    pressure's work rate over V (N)."""
+    import fem_reference as fr
+    from fem_reference.case import problem_from_dict
+
+    problem = problem_from_dict({**problem_cfg, "fem": {"model": "3d", **settings, "element_size": size}})
+    t = time.perf_counter()
+    res = fr.solve(problem)
+    seconds = time.perf_counter() - t
+    scalars = {q: float(getattr(res, q)) for q in ("rolling_resistance", "indentation", "leading_edge",
+                                                   "trailing_edge", "peak_pressure", "load", "dissipation")}
+    scalars["pressure_centroid_x"] = float(res.pressure_centroid)
+    scalars["rolling_resistance_slope"] = float(res.pressure_power) / res.speed
+    return Run("fem", size, scalars, np.asarray(res.pressure_x), np.asarray(res.pressure), seconds)
+
+
 def solve(problem: dict, level: Level) -> Run:
     """The method protocol: the case's ``[problem]`` at one level of ``[fem] element_sizes``
-    (steady rolling in plane strain for ``[indenter] shape = "line"``)."""
+    (steady rolling in plane strain for ``[indenter] shape = "line"``; of a sphere in 3D
+    for a speed > 0)."""
     if problem["indenter"].get("shape") == "line":
         return run_line(problem, level.settings, level.size)
+    if problem["loading"].get("speed", 0.0) > 0:
+        return run_rolling(problem, level.settings, level.size)
     return run(problem, level.settings, level.size)
