@@ -64,7 +64,7 @@ def _compliance_mp(nx, ny, G, rho_V2, H, digits=30):
         return np.array([[complex(C[i, j]) for j in range(3)] for i in range(3)])
 
 
-@pytest.mark.parametrize("G, rho_V2", [(3e6, 0.0), (3e6 + 1e6j, 2.5), (3e6, 2.1e6), (3e6 + 5e5j, 4.5e6)])
+@pytest.mark.parametrize("G, rho_V2", [(3e6, 0.0), (3e6 + 1e6j, 2.5), (3e6, 2.1e6), (3e6 + 5e5j, 4.5e6), (1e5 + 3e6j, 1e6)])
 def test_every_entry_on_its_own_scale_against_a_30_digit_exponential(G, rho_V2):
     """At small kH the w-entries vanish like kH or (kH)^2 next to H/G, so a comparison
     relative to the largest entry cannot see them; against a 30-digit matrix exponential
@@ -73,7 +73,9 @@ def test_every_entry_on_its_own_scale_against_a_30_digit_exponential(G, rho_V2):
     basis); uv = vu =
     cos sin (c_LL - c_TT) is a difference of two O(H/G) numbers that agree to (kH)^2: its
     round-off is eps / (kH)^2 relative to itself (measured 2e-8 at kH = 1e-4), allowed
-    1e-15 / (kH)^2 + 1e-14; its absolute error stays at round-off of H/G."""
+    1e-15 / (kH)^2 + 1e-14; its absolute error stays at round-off of H/G. The last
+    material (loss factor 30, rho V^2 = |G| / 3) has Re q > k, where the
+    scaled bases take exp((k - kappa) H) != 1."""
     ang = 0.7
     for kh in (1e-4, 1e-3, 0.02, 0.3, 1.5, 6.0):
         k = kh / H
