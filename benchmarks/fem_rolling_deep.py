@@ -14,7 +14,7 @@ and b0 / h), errors against Hunter, time per speed and in all.
 ``... --counts``: unknowns and LU fill against H / b0 for the tensor-product mesh
 (every x line through the depth, band Z / 2) and the default (thinned x lines, shallow
 band), without solving.
-``... --depth [V tau / b0]``: R_r, D / V, edges and indentation for H / b0 = 10 .. 640,
+``... --depth [V tau / b0]``: R_r, D / V, edges and indentation for H / b0 = 10 .. 2560,
 the observed order of the depth convergence and the Richardson limit.
 ``... --mesh``: the element size at H = 160 b0, V tau / b0 = 1.
 ``... --inertia``: an elastic layer at 0.6 of the shear-wave speed against 2D Hertz with
@@ -118,7 +118,7 @@ def richardson(h_values, values):
 def run_depth(scaled):
     ref = hunter(scaled)
     peak = max(abs(hunter(s).rolling_resistance) for s in SCALED)
-    depths = (10, 20, 40, 80, 160, 320, 640)
+    depths = (10, 20, 40, 80, 160, 320, 640, 1280, 2560)
     rows = []
     for depth in depths:
         res, t = solve(scaled, depth)

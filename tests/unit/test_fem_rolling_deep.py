@@ -1,0 +1,166 @@
+"""fem_reference's plane-strain rolling on a deep layer: the mesh whose x lines thin out
+with depth, 2D Hertz on a deep elastic layer, the moving-modulus Hertz contact, and
+(slow) Hunter's half-space solution.
+
+Numbers from benchmarks/fem_rolling_deep.py (BENCHMARKS.md, "fem_reference deep layer
+against Hunter (issue 10)"); each tolerance is the measured value with a stated margin.
+"""
+
+import math
+
+import numpy as np
+import pytest
+
+import fem_reference as fr
+from fem_reference import mesh_plane
+from fem_reference.mesh_plane import coarsen_line, plane_mesh
+from fem_reference.plane_discretization import resolve_plane
+
+G0, TAU, F = 3.0e6, 0.25, 1.0
+R, P = 0.02, 1000.0
+B0 = math.sqrt(P * R / (math.pi * G0))  # 2D Hertz half-width, relaxed modulus (m)
+
+
+def _problem(depth, material=None, speed=0.0, density=0.0, **fem):
+    material = material or fr.ThreeParameterMaterial(G0, TAU, F)
+    return fr.ContactProblem(fr.Layer(depth * B0, density), material, fr.Indenter("line", R),
+                             fr.Loading(load=P, speed=speed), fr.FemSettings(**fem))
+
+
+def _mesh(depth, aspect=mesh_plane.ASPECT, band=None, size=30.0):
+    d = resolve_plane(_problem(depth, speed=B0 / TAU, element_size=B0 / size))
+    return plane_mesh(depth * B0, d.contact_zone, d.upstream, d.downstream, d.mesh_size,
+                      d.band if band is None else band, d.grading, d.far_x_up, d.far_x_down,
+                      d.far_z, aspect=aspect), d
+
+
+# --- the mesh ------------------------------------------------------------------------
+
+def test_coarsen_line_merges_pairs_outward_from_zero():
+    """Uniform unit spacing, target 2: every other node from x = 0 outwards on both sides,
+    the ends kept (the last interval stays single)."""
+    x = np.arange(-5.0, 6.0)
+    assert x[coarsen_line(x, 2.0)].tolist() == [-5, -4, -2, 0, 2, 4, 5]
+    assert coarsen_line(x, 1.9).all()  # two intervals span 2 > 1.9: nothing merges
+    # no node at 0: the interval across it is kept, the halves merge from its ends
+    y = np.arange(-2.5, 3.0)
+    assert y[coarsen_line(y, 2.0)].tolist() == [-2.5, -0.5, 0.5, 2.5]
+
+
+def test_mesh_is_conforming_mirrored_and_fills_the_section():
+    """The transition rows leave no hanging node: every edge lies on two triangles except
+    those on the rectangle's sides; the triangles tile the section (areas sum to it, none
+    degenerate) and, on the candidate zone and its grading, are the mirror image of
+    themselves about x = 0."""
+    (mesh, x, z), d = _mesh(160, size=10.0)
+    H = 160 * B0
+    p, t = mesh.p, mesh.t
+    a = 0.5 * ((p[0, t[1]] - p[0, t[0]]) * (p[1, t[2]] - p[1, t[0]])
+               - (p[0, t[2]] - p[0, t[0]]) * (p[1, t[1]] - p[1, t[0]]))
+    assert np.abs(a).min() > 0
+    assert np.abs(a).sum() == pytest.approx((d.upstream + d.downstream) * H, rel=1e-12)
+    fb = mesh.facets[:, mesh.boundary_facets()]
+    ends = p[:, fb]  # (2, 2, n): both ends of each boundary facet
+    tol = 1e-9 * H
+    on_side = ((np.abs(ends[1]) < tol) | (np.abs(ends[1] - H) < tol)).all(axis=0) | \
+              ((np.abs(ends[0] - d.upstream) < tol) | (np.abs(ends[0] + d.downstream) < tol)).all(axis=0)
+    assert on_side.all()
+    # mirror symmetry where the x lines are symmetric: up to 10 b0 on each side
+    key = lambda pts: set(tuple(sorted(map(tuple, np.round(tri.T / (1e-6 * B0)).astype(int))))
+                          for tri in pts)
+    near = np.abs(p[0, t]).max(axis=0) < 10 * B0
+    tris = p[:, t[:, near]].transpose(2, 0, 1)  # (n, 2, 3)
+    mirrored = tris * np.array([-1.0, 1.0])[None, :, None]
+    assert key(tris) == key(mirrored)
+    # below the band the x lines thin out: the deepest line keeps far fewer nodes
+    assert np.sum(np.abs(p[1]) < tol) < 0.5 * len(x)
+
+
+def test_unknowns_grow_like_the_log_of_the_depth():
+    """Vertices at H / b0 = 40, 160, 640, 2560 (h = b0 / 30): each factor 4 in depth adds
+    about the same number (measured 580, 653, 635 to 3 015: log growth; the
+    tensor-product mesh, every x line through the depth with a band of Z / 2, has 2.4
+    times the vertices at 160 b0)."""
+    counts = [_mesh(depth)[0][0].p.shape[1] for depth in (40, 160, 640, 2560)]
+    steps = np.diff(counts)
+    assert (steps > 0).all() and steps.max() < 1.25 * steps.min()
+    assert counts[-1] < 1.7 * counts[0]
+    (tensor, _, _), d = _mesh(160, aspect=None, band=0.75 * B0)
+    assert tensor.p.shape[1] > 2 * counts[1]
+
+
+# --- deep elastic layer: 2D Hertz, at rest and moving -----------------------------------
+
+@pytest.fixture(scope="module")
+def moving_and_resting():
+    """An elastic layer 160 b0 deep at 0.6 c_s (rho = 1000 kg/m^3), and at rest with the
+    moving modulus G_eff on the same mesh (h = b0 / 20, candidate zone 1.5 b0; 4.5 s of
+    CPU for both)."""
+    rho, mach = 1000.0, 0.6
+    beta = math.sqrt(1 - mach ** 2)
+    g = (beta ** 3 + beta ** 2 + 3 * beta - 1) / (2 * (1 + beta))
+    fem = dict(element_size=B0 / 20, contact_zone=1.5 * B0)
+    moving = fr.solve(_problem(160, fr.ElasticMaterial(G0), mach * math.sqrt(G0 / rho), rho, **fem))
+    rest = fr.solve(_problem(160, fr.ElasticMaterial(G0 * g), **fem))
+    return moving, rest, g
+
+
+def test_deep_elastic_layer_is_2d_hertz(moving_and_resting):
+    """At rest, b = sqrt(P R / (pi G)) (docs/derivations.md section 8; the issue's
+    sqrt(8 P R / (pi E*)) is sqrt(2) larger) and p_max = 2 P / (pi b). Measured on G_eff
+    = 0.709 G: half-width -0.37% (the gap fit's bias, which moves with the edge's place
+    between vertices: -0.33% at h = b0 / 30, +0.006% there with G itself), peak pressure
+    +0.055%, edges symmetric to 1e-12 b, R_r 1e-13 P b / R; 0.6%, 0.15%, 1e-6 b and 1e-8
+    P b / R allowed."""
+    _, rest, g = moving_and_resting
+    b = math.sqrt(P * R / (math.pi * G0 * g))
+    assert rest.contact_length / 2 == pytest.approx(b, rel=6e-3)
+    assert rest.peak_pressure == pytest.approx(2 * P / (math.pi * b), rel=1.5e-3)
+    assert abs(rest.leading_edge + rest.trailing_edge) < 1e-6 * b
+    assert abs(rest.rolling_resistance) < 1e-8 * P * b / R
+
+
+def test_moving_contact_is_hertz_with_the_moving_modulus(moving_and_resting):
+    """rho V^2 d2u/dx2 at 0.6 c_s: the contact of an elastic half-space is 2D Hertz with
+    G_eff = G (beta^3 + beta^2 + 3 beta - 1) / (2 (1 + beta)), beta = sqrt(1 - V^2 / c_s^2)
+    (docs/derivations.md section 8, from the BEM's compliance). Against the resting
+    contact with G_eff on the same mesh, measured: half-widths 2.4e-4 apart (1.0e-4 at
+    h = b0 / 30), peak pressures 1.3e-5 (the 0.32% the last session saw against the
+    formula is the gap fit's bias, the same at rest); 5e-4 and 1e-4 allowed."""
+    moving, rest, g = moving_and_resting
+    assert moving.contact_length == pytest.approx(rest.contact_length, rel=5e-4)
+    assert moving.peak_pressure == pytest.approx(rest.peak_pressure, rel=1e-4)
+    assert moving.indentation > 0
+
+
+# --- against Hunter (slow) ---------------------------------------------------------------
+
+@pytest.mark.slow
+@pytest.mark.parametrize("scaled", [0.1, 1.0, 100.0])
+def test_deep_layer_against_hunter(scaled):
+    """The recommended configuration of rolling-halfspace-2d's FEM: H = 1000 b0, h =
+    b0 / 30, the other [fem] defaults. Measured (all nine case speeds): R_r within 0.148%
+    of Hunter's peak R_r, D / V within 0.05%, the edges within 0.18% of the contact length;
+    here 0.3%, 0.15% and 0.3% (the issue's gates: 1% and 0.5%)."""
+    from verification.analytic import hunter_rolling_contact
+
+    peak = hunter_rolling_contact(P, R, G0, TAU, F, B0 / TAU).rolling_resistance  # the sweep's peak
+    V = scaled * B0 / TAU
+    ref = hunter_rolling_contact(P, R, G0, TAU, F, V)
+    res = fr.solve(_problem(1000, speed=V, element_size=B0 / 30))
+    length = ref.leading_edge - ref.trailing_edge
+    assert abs(res.rolling_resistance - ref.rolling_resistance) < 3e-3 * peak
+    assert abs(res.rolling_resistance_energy - ref.rolling_resistance) < 1.5e-3 * peak
+    assert abs(res.leading_edge - ref.leading_edge) < 3e-3 * length
+    assert abs(res.trailing_edge - ref.trailing_edge) < 3e-3 * length
+
+
+@pytest.mark.slow
+def test_depth_convergence_is_second_order():
+    """The layer's bonded base adds a smooth part, c0 + c2 x^2 / H^2, to the half-space's
+    surface kernel: R_r converges like (b / H)^2. At V tau / b0 = 1, h = b0 / 30, H / b0 =
+    40, 80, 160: changes 0.0141, 0.0035 N/m (order 2.01, measured up to 2560 b0)."""
+    rr = [fr.solve(_problem(depth, speed=B0 / TAU, element_size=B0 / 30)).rolling_resistance
+          for depth in (40, 80, 160)]
+    order = math.log((rr[1] - rr[0]) / (rr[2] - rr[1])) / math.log(2.0)
+    assert order == pytest.approx(2.0, abs=0.1)
