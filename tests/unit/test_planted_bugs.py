@@ -49,8 +49,8 @@ PLANTED = {
     ),
     "cylinder rolling arm -x / 2R": (
         "bem/indenters.py",
-        [("g, np.inf)\n\n    def rolling_arm(self, X, Y):\n        return np.asarray(X) / self.radius",
-          "g, np.inf)\n\n    def rolling_arm(self, X, Y):\n        return -np.asarray(X) / (2 * self.radius)", 1)],
+        [("g, np.inf)\n\n    def rolling_arm(self, X, Y):\n        return np.asarray(X, float) / self.radius",
+          "g, np.inf)\n\n    def rolling_arm(self, X, Y):\n        return -np.asarray(X, float) / (2 * self.radius)", 1)],
         [f"{KILLS_BEM}::test_cylinder_profile_ends_and_arm"],
     ),
     "Richardson ratio hard-coded to 2": (
