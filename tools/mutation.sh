@@ -7,9 +7,11 @@
 #   MUTATION_REF=<commit>  tools/mutation.sh ...    mutate/test another commit
 #   MUTATION_DIR=<dir>     tools/mutation.sh ...    scratch directory (default /tmp/viscolayer-mutation/<module>)
 #   MUTATION_NAMES='<mutant names or globs>' ...    only these mutants (e.g. the survivors of a full run)
-#   MUTATION_TIMEOUT_MULTIPLIER=<x> ...             a mutant times out after 2 x (its tests' clean
-#                                                   time + 1 s) CPU seconds (default 3; mutmut's own 15
-#                                                   let a runaway mutant of a 20 s test set burn 10 min)
+#   MUTATION_TIMEOUT_MULTIPLIER=<x> ...             a mutant times out after x (its tests' clean time
+#                                                   + 1 s) wall seconds (2x that in CPU); default 6: mutmut's
+#                                                   own 15 let a runaway mutant of a 20 s test set burn 10 min,
+#                                                   and 3 timed out equivalent mutants when the shared machine
+#                                                   ran 3x slower under nice than in the clean run
 #
 # Without TEST_FILE the default list of fast test files for MODULE (below) is used.
 # Prints the summary line (killed / survived / ... / score) and the survivors' diffs;
@@ -62,7 +64,7 @@ only_mutate = ["$module"]
 also_copy = ["examples/", "docs/", "benchmarks/", "README.md"]
 pytest_add_cli_args_test_selection = $(toml_list "${present[@]}")
 pytest_add_cli_args = ["-x", "-q", "-p", "no:cacheprovider", "-m", "not slow"]
-timeout_multiplier = ${MUTATION_TIMEOUT_MULTIPLIER:-3}
+timeout_multiplier = ${MUTATION_TIMEOUT_MULTIPLIER:-6}
 TOML
 # hypothesis in mutation runs: fixed examples, no shrinking (a killed mutant needs no
 # minimal example), no example database
