@@ -4,6 +4,7 @@
 # scratch directory (git archive of REF, default HEAD) and mutmut runs there.
 #
 #   tools/mutation.sh MODULE [TEST_FILE ...]        e.g. tools/mutation.sh bem/kinematics.py
+#                                                   (MODULE may be a glob in quotes: 'bem/frictional/*')
 #   MUTATION_REF=<commit>  tools/mutation.sh ...    mutate/test another commit
 #   MUTATION_DIR=<dir>     tools/mutation.sh ...    scratch directory (default /tmp/viscolayer-mutation/<module>)
 #   MUTATION_NAMES='<mutant names or globs>' ...    only these mutants (e.g. the survivors of a full run)
@@ -38,6 +39,8 @@ default_tests() {
         bem/layer.py) echo tests/unit/test_layer.py tests/unit/test_properties_layer.py \
             tests/unit/test_derivation_eq45.py ;;
         bem/energy.py) echo tests/unit/test_properties_layer.py ;;
+        bem/friction.py|bem/frictional/*) echo tests/unit/test_friction.py tests/unit/test_bem_friction_cli.py \
+            tests/unit/test_bem_displacement_control.py::test_frictional_rolling_under_displacement_control ;;
         bem/contact.py) echo tests/unit/test_mutation_kills_contact.py tests/unit/test_contact.py \
             tests/unit/test_properties_contact.py tests/unit/test_bem_displacement_control.py ;;
         fem_reference/forms.py|fem_reference/postprocess.py|fem_reference/solve.py)
@@ -48,7 +51,7 @@ default_tests() {
 }
 if [ $# -gt 0 ]; then tests=("$@"); else read -r -a tests <<<"$(default_tests "$module")"; fi
 
-work=${MUTATION_DIR:-/tmp/viscolayer-mutation/$(echo "$module" | tr '/.' '__')}
+work=${MUTATION_DIR:-/tmp/viscolayer-mutation/$(echo "$module" | tr '/.*' '__x')}
 rm -rf "$work"
 mkdir -p "$work"
 git -C "$here" archive "$ref" | tar -x -C "$work"
