@@ -22,12 +22,17 @@ well (its ``bem/rolling.py``, loaded from ``git show``; the rest of ``bem`` is t
 after today's, and prints both and whether they end on the same state (contact and stick
 sets, forces relative to the largest): a paired comparison on a shared machine.
 
-Run: ``.venv/bin/python benchmarks/bem_friction_rolling.py [--case contact|section11|all]
-[--spacing 0.2e-3 0.1e-3] [--nodes 129 257] [--repeat 1] [--old 703d952]``.
+Run (from ``benchmarks/``, ``OPENBLAS_NUM_THREADS=1``), one case a command so that the peak
+RSS is the case's own: ``../.venv/bin/python bem_friction_rolling.py --case contact --spacing
+0.2e-3`` (and ``0.1e-3``), ``--case section11 --nodes 0`` (the example's 41 x 41), ``129``,
+``257``, ``513``; add ``--repeat 3`` for a median, ``--old REV`` for a paired comparison.
+A summary table (kernels, frictionless, frictional wall and CPU, ratio, whole run,
+iterations, peak RSS) ends the output.
 """
 
 import argparse
 import importlib
+import os
 import re
 import sys
 import subprocess
@@ -141,8 +146,28 @@ def run(label: str, problem: Problem, friction: Friction, repeat: int, verbose: 
     coarse = [ln for ln in lines if "coarse" in ln]
     if coarse:
         print(f"  coarse start done at {coarse[-1].split(' s')[0].strip()} s")
+    SUMMARY.append((label.split(":")[0], f"{g.nodes_x} x {g.nodes_y}", int(res.contact.sum()), kernel_s, normal_s,
+                    solve_s, solve_cpu, solve_s / normal_s, kernel_s + solve_s, r.iterations, r.linear_iterations,
+                    peak_rss_mb()))
     return {"kernel_s": kernel_s, "normal_s": normal_s, "solve_s": solve_s, "solve_cpu": solve_cpu, "result": res,
             "kernels": (kernels, kernel_s)}
+
+
+SUMMARY: list = []
+
+
+def print_summary() -> None:
+    """One row per case: the figures the issue's goals are about."""
+    if not SUMMARY:
+        return
+    print("\nsummary (s; peak RSS of the process so far, kernels included)")
+    head = ("case", "grid", "contact", "kernels", "frictionless", "frictional", "CPU", "ratio", "whole run",
+            "active set", "GMRES", "peak RSS MB")
+    print(" | ".join(head))
+    for row in SUMMARY:
+        case, grid, nc, ks, ns, fs, fc, ratio, whole, it, lin, rss = row
+        print(f"{case} | {grid} | {nc} | {ks:.2f} | {ns:.3f} | {fs:.3f} | {fc:.3f} | {ratio:.2f} | {whole:.2f} | "
+              f"{it} | {lin} | {rss:.0f}")
 
 
 def paired(label, problem, friction, args):
@@ -166,17 +191,20 @@ if __name__ == "__main__":
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--case", choices=("contact", "section11", "all"), default="all")
     ap.add_argument("--spacing", type=float, nargs="*", default=[0.2e-3, 0.1e-3])
-    ap.add_argument("--nodes", type=int, nargs="*", default=[129, 257])
+    ap.add_argument("--nodes", type=int, nargs="*", default=[0, 129, 257],
+                    help="section 11 grids (nodes a side; 0: the example's own 41 x 41)")
     ap.add_argument("--repeat", type=int, default=1)
     ap.add_argument("--verbose", action="store_true")
     ap.add_argument("--period", type=float, default=0.6, help="period L (m) of the issue's case")
     ap.add_argument("--old", metavar="REV", help="also solve with the frictional solver of this git revision")
     args = ap.parse_args()
-    print(machine())
+    print(machine(), "| load average", " ".join(f"{x:.2f}" for x in os.getloadavg()))
     if args.case in ("contact", "all"):
         for a in args.spacing:
-            paired(f"issue 11 case (CONTACT), spacing {a * 1e3:g} mm, L = {args.period:g} m", *contact_case(a, args.period), args)
+            paired(f"issue 11 case (CONTACT), spacing {a * 1e3:g} mm, L = {args.period:g} m", *contact_case(a, args.period),
+                   args)
     if args.case in ("section11", "all"):
-        paired("section 11 with friction", *section11_case(None), args)
         for n in args.nodes:
-            paired("section 11 with friction", *section11_case(n), args)
+            paired("section 11 with friction", *section11_case(n or None), args)
+    print_summary()
+    print("load average at the end", " ".join(f"{x:.2f}" for x in os.getloadavg()))
