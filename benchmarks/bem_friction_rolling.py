@@ -72,25 +72,32 @@ def section11_case(nodes: int | None):
     return Problem(LAYER, Sphere(0.02), grid, Loading(0.05, load=150.0)), Friction(0.2)
 
 
+def old_module(rev: str, name: str = ""):
+    """The ``bem`` package at git revision ``rev`` (or its module ``name``): its files
+    (``git archive``) imported as the package ``bem_old`` (every ``bem`` import renamed), so
+    that today's and the old code run in one process on the same inputs. One copy a
+    process (the first ``rev`` asked for)."""
+    if "bem_old" not in sys.modules:
+        root = Path(__file__).resolve().parent.parent
+        tmp = Path(tempfile.mkdtemp())
+        archive = subprocess.run(["git", "archive", rev, "bem"], cwd=root, check=True, capture_output=True).stdout
+        subprocess.run(["tar", "-x", "-C", str(tmp)], input=archive, check=True)
+        (tmp / "bem").rename(tmp / "bem_old")
+        for path in (tmp / "bem_old").rglob("*.py"):
+            text = path.read_text()
+            text = re.sub(r"\b(from|import) bem\b", r"\1 bem_old", text)
+            path.write_text(text)
+        sys.path.insert(0, str(tmp))
+        importlib.import_module("bem_old")
+        sys.path.remove(str(tmp))
+    return importlib.import_module("bem_old" + (f".{name}" if name else ""))
+
+
 def old_solver(rev: str):
-    """``solve_friction`` of the ``bem`` package at git revision ``rev``: its files (``git
-    archive``) imported as the package ``bem_old`` (every ``bem`` import renamed), so that
-    today's and the old solver run in one process on the same kernels. Before the
-    ``bem.frictional`` package (703d952 and earlier) that is ``bem/rolling.py``'s."""
-    root = Path(__file__).resolve().parent.parent
-    tmp = Path(tempfile.mkdtemp())
-    archive = subprocess.run(["git", "archive", rev, "bem"], cwd=root, check=True, capture_output=True).stdout
-    subprocess.run(["tar", "-x", "-C", str(tmp)], input=archive, check=True)
-    (tmp / "bem").rename(tmp / "bem_old")
-    for path in (tmp / "bem_old").rglob("*.py"):
-        text = path.read_text()
-        text = re.sub(r"\b(from|import) bem\b", r"\1 bem_old", text)
-        path.write_text(text)
-    sys.path.insert(0, str(tmp))
-    module = importlib.import_module("bem_old")
-    sys.path.remove(str(tmp))
-    return module.solve_friction if hasattr(module, "solve_friction") else importlib.import_module(
-        "bem_old.rolling").solve_friction
+    """``solve_friction`` of the ``bem`` package at git revision ``rev`` (:func:`old_module`);
+    before the ``bem.frictional`` package (703d952 and earlier) ``bem/rolling.py``'s."""
+    module = old_module(rev)
+    return module.solve_friction if hasattr(module, "solve_friction") else old_module(rev, "rolling").solve_friction
 
 
 def compare(new, old) -> str:
