@@ -86,7 +86,7 @@ def richardson(f1, f2, f3, r=RATIO):
     if d1 == 0 or d2 == 0 or d1 * d2 < 0 or abs(d2) >= abs(d1):
         return float("nan"), float("nan")
     p = math.log(d1 / d2) / math.log(r)
-    return p, f3 + d2 / (r ** p - 1.0)
+    return p, f3 - d2 / (r ** p - 1.0)
 
 
 def bem_rr() -> float:

@@ -1,8 +1,9 @@
 """Exactly incompressible finite-element reference for frictionless contact on a layer
 bonded to a rigid base: stationary elastic indentation (axisymmetric or 3D), and steady
-rolling of a rigid cylinder on an elastic or viscoelastic (Prony, three-parameter)
-layer in plane strain, in the frame of the indenter (:mod:`.rolling_solve`,
-docs/derivations.md section 7).
+rolling on an elastic or viscoelastic (Prony, three-parameter) layer in the frame of the
+indenter: of a rigid cylinder in plane strain (:mod:`.rolling_solve`, docs/derivations.md
+section 7) and of a rigid sphere in 3D on the half layer y >= 0 (:mod:`.rolling3d_solve`,
+section 9; ``fem.model = "3d"`` with ``loading.speed`` > 0).
 
 Taylor-Hood P2-P1 displacement-pressure elements (scikit-fem) on gmsh meshes
 (read through meshio, named physical groups, refined around the contact), in an
@@ -29,6 +30,15 @@ Rolling (plane strain, per unit length)::
     result.indentation, result.pressure_x, result.pressure, result.dissipation
     result.summary()
 
+Rolling sphere (3D, totals in N; MKL Pardiso when ``pypardiso`` is installed)::
+
+    result = solve(ContactProblem(Layer(5e-3, 1000.0), ThreeParameterMaterial(3e6, 0.25, 1.0),
+                                  Indenter("sphere", 0.02), Loading(load=150.0, speed=0.05),
+                                  FemSettings(model="3d")))
+    result.rolling_resistance, result.rolling_resistance_energy, result.energy_balance
+    result.leading_edge, result.trailing_edge          # on the symmetry line y = 0
+    result.zone_xy, result.zone_pressure, result.peak_memory
+
 Command line: ``fem-reference solve CASE.toml --json [--set fem.model='"3d"']
 [--plot FILE.png] [--vtu FILE.vtu]``. The case file is the one of ``bem solve``
 (docs/case-files.md); fem_reference reads ``[layer] thickness``,
@@ -45,9 +55,10 @@ line, ``"three_parameter"`` or ``"prony"``), ``[indenter] shape`` ("sphere" |
 ``element_size``   element size in the contact zone, m (axisymmetric
                    min(a_est/24, H/4); 3d min(a_est/8, H/2))
 ``contact_zone``   radius of the refined candidate contact zone, m (1.4 a_est)
-``domain_radius``  lateral extent of the layer, m (contact_zone + 8 H)
-``upstream``       plane strain: length ahead (inflow), m
-``downstream``     plane strain: length behind (outflow), m
+``domain_radius``  lateral extent of the layer, m (contact_zone + 8 H; 3d
+                   rolling: the half box's extent in y)
+``upstream``       rolling: length ahead (inflow), m
+``downstream``     rolling: length behind (outflow), m
 ``far_size``       largest element size, m (H/2 axisymmetric, H in 3d)
 ``grading``        size growth with distance from the zone, - (0.3)
 ``refine``         uniform refinements of the gmsh mesh (nested levels), (0)
@@ -67,12 +78,13 @@ from .errors import (ContactNotConvergedError, ContactZoneError, FemReferenceErr
 from .materials import ElasticMaterial, PronyMaterial, ThreeParameterMaterial
 from .problem import ContactProblem, FemSettings, Indenter, Layer, Loading
 from .result import ContactResult
+from .rolling3d_result import SphereRollingResult
 from .rolling_result import RollingResult
 from .solve import solve
 
 __all__ = [
     "solve", "ContactProblem", "Layer", "ElasticMaterial", "PronyMaterial",
     "ThreeParameterMaterial", "Indenter", "Loading", "FemSettings", "ContactResult",
-    "RollingResult", "FemReferenceError", "InputError", "MeshError",
+    "RollingResult", "SphereRollingResult", "FemReferenceError", "InputError", "MeshError",
     "LinearSolverError", "ContactNotConvergedError", "ContactZoneError", "MissingDependencyError",
 ]

@@ -13,12 +13,15 @@ Lengths in m.
 from __future__ import annotations
 
 from ._deps import import_gmsh
+from .errors import MeshError
 from .gmsh_io import mesh_with_gmsh
 from .mesh_axisym import size_field
 
 gmsh = import_gmsh()  # one clear ImportError if gmsh's system libraries are missing
 
 __all__ = ["half_box_mesh"]
+
+NAMES = ("base", "inflow", "outflow", "sym_y", "lateral", "zone", "free")
 
 
 def half_box_mesh(thickness: float, zone: float, upstream: float, downstream: float,
@@ -35,15 +38,16 @@ def half_box_mesh(thickness: float, zone: float, upstream: float, downstream: fl
         cut, _ = occ.intersect([(2, disk)], [(2, half)])
         occ.fragment([(3, body)], cut)
         occ.synchronize()
-        groups = {name: [] for name in ("base", "inflow", "outflow", "sym_y", "lateral",
-                                        "zone", "free")}
-        tol = 1e-6 * max(upstream + downstream, lateral)
+        groups = {name: [] for name in NAMES}
+        # OCC pads bounding boxes by 1e-7 m: a tolerance far above that and far below
+        # any length of the model
+        tol = 1e-3 * min(H, Z)
         for _, tag in gmsh.model.getEntities(2):
             x0, y0, z0, x1, y1, z1 = gmsh.model.getBoundingBox(2, tag)
             if z1 < tol:
                 groups["base"].append(tag)
             elif z0 > H - tol:
-                inside = x0 > -Z - 1e3 * tol and x1 < Z + 1e3 * tol and y1 < Z + 1e3 * tol
+                inside = x0 > -Z - tol and x1 < Z + tol and y1 < Z + tol
                 groups["zone" if inside else "free"].append(tag)
             elif x0 > upstream - tol:
                 groups["inflow"].append(tag)
@@ -59,4 +63,8 @@ def half_box_mesh(thickness: float, zone: float, upstream: float, downstream: fl
         gmsh.model.addPhysicalGroup(3, vols, name="layer")
         size_field(dim_tags=("SurfacesList", groups["zone"]), disc=sizes)
 
-    return mesh_with_gmsh(build, "tetra", 3)
+    mesh = mesh_with_gmsh(build, "tetra", 3)
+    missing = [name for name in NAMES if name not in (mesh.boundaries or {})]
+    if missing:
+        raise MeshError(f"the half-box mesh lacks the boundaries {missing}")
+    return mesh
