@@ -114,13 +114,16 @@ def test_normal_kernel_alone_matches_direct_summation():
                 assert np.abs(allb[b] - alld[b]).max() <= 1e-14 * np.abs(alld[b]).max(), b
 
 
-def test_more_modes_than_one_batch():
+@pytest.mark.parametrize("layer, speed, blocks", [(VISCO, 0.05, ("ww", "uu")),  # with inertia: batched sums
+                                                  (Layer(0.05, Elastic(3.0e6)), 0.0, ("ww", "uv", "vv", "wu"))])
+def test_more_modes_than_one_batch(layer, speed, blocks):
     """N_tx = 300 > 256 modes per batch of symbols: every batch is evaluated once and in
-    place (fast against direct, 1e-14 relative)."""
+    place, with inertia (symbols summed batch by batch) and without (half-space split):
+    fast against direct, 1e-14 relative."""
     grid = Grid(0.7e-3, 0.9e-3, 0.02, 0.025, 300, 30, 7, 6)
-    fast = influence_kernels(grid, VISCO, 0.05, blocks=("ww", "uu"))
-    direct = influence_kernels_direct(grid, VISCO, 0.05, blocks=("ww", "uu"))
-    for b in ("ww", "uu"):
+    fast = influence_kernels(grid, layer, speed, blocks=blocks)
+    direct = influence_kernels_direct(grid, layer, speed, blocks=blocks)
+    for b in blocks:
         assert np.abs(fast[b] - direct[b]).max() <= 1e-14 * np.abs(direct[b]).max(), b
 
 
