@@ -109,7 +109,11 @@ def fgmres(matvec, b: np.ndarray, precondition=None, *, tol: float, restart: int
             if abs(g[j + 1]) <= tol or breakdown:
                 break
         k = j + 1
-        y = np.linalg.solve(np.triu(H[:k, :k]), g[:k]) if k > 0 else np.zeros(0)
+        R = np.triu(H[:k, :k])
+        if np.all(np.diag(R) != 0):
+            y = np.linalg.solve(R, g[:k])
+        else:  # A z_j = 0 for some j: the least-squares step, and a failure if it does not suffice
+            y = np.linalg.lstsq(R, g[:k], rcond=None)[0]
         x += y @ Z[:k]
         r = b - matvec(x)
         beta = float(np.linalg.norm(r))
