@@ -64,26 +64,29 @@ def _compliance_mp(nx, ny, G, rho_V2, H, digits=30):
         return np.array([[complex(C[i, j]) for j in range(3)] for i in range(3)])
 
 
-@pytest.mark.parametrize("G, rho_V2", [(3e6, 0.0), (3e6 + 1e6j, 2.5), (3e6, 2.1e6), (3e6 + 5e5j, 4.5e6), (1e5 + 3e6j, 1e6)])
-def test_every_entry_on_its_own_scale_against_a_30_digit_exponential(G, rho_V2):
+@pytest.mark.parametrize("G, rho_V2, ang", [(3e6, 0.0, 0.7), (3e6 + 1e6j, 2.5, 0.7), (3e6, 2.1e6, 0.7), (3e6, 4.5e6, 0.3),
+                                            (3e6 + 5e5j, 4.5e6, 0.7), (1e5 + 3e6j, 1e6, 0.7)])
+def test_every_entry_on_its_own_scale_against_a_30_digit_exponential(G, rho_V2, ang):
     """At small kH the w-entries vanish like kH or (kH)^2 next to H/G, so a comparison
     relative to the largest entry cannot see them; against a 30-digit matrix exponential
-    each entry is compared with itself: ww, uu, vv 1e-14 (measured <= 8e-16); the w-u
+    each entry is compared with itself: ww, uu, vv 5e-14 (measured <= 8e-16, and 1.0e-14
+    in ww at kH = 6 above the shear-wave speed); the w-u
     couplings 1e-12 (measured <= 8e-16 for kH <= 2, 2.5e-13 at kH = 6 in the large-kH
     basis); uv = vu =
     cos sin (c_LL - c_TT) is a difference of two O(H/G) numbers that agree to (kH)^2: its
     round-off is eps / (kH)^2 relative to itself (measured 2e-8 at kH = 1e-4), allowed
-    1e-15 / (kH)^2 + 1e-14; its absolute error stays at round-off of H/G. The last
+    1e-15 / (kH)^2 + 1e-14; its absolute error stays at round-off of H/G. A real modulus
+    above the shear-wave speed (rho V^2 = 1.5 G) makes q^2 < 0 for the modes within 35
+    degrees of x (here 17 degrees: q = i |q|, taken in complex arithmetic). The last
     material (loss factor 30, rho V^2 = |G| / 3) has Re q > k, where the
     scaled bases take exp((k - kappa) H) != 1."""
-    ang = 0.7
     for kh in (1e-4, 1e-3, 0.02, 0.3, 1.5, 6.0):
         k = kh / H
         nx, ny = k * np.cos(ang), k * np.sin(ang)
         R = _compliance_mp(nx, ny, G, rho_V2, H)
         err = np.abs(surface_compliance(nx, ny, G, rho_V2, H) - R) / np.abs(R)
         tol = np.full((3, 3), 1e-12)
-        tol[[0, 1, 2], [0, 1, 2]] = 1e-14
+        tol[[0, 1, 2], [0, 1, 2]] = 5e-14
         tol[1, 2] = tol[2, 1] = 1e-15 / kh**2 + 1e-14
         assert np.all(err <= tol), (kh, err)
 
