@@ -14,7 +14,9 @@ Modules, one concept each:
   :class:`bem.problem.Problem`) and :func:`solve_rolling` (prepared operators).
 
 Linear solves go through :class:`bem.linear.LinearSolver` (shared with the frictionless
-solver): dense LU up to ``Friction.dense_limit`` unknowns, GMRES with FFT products above.
+solver): dense LU up to ``Friction.dense_limit`` unknowns, above it flexible
+right-preconditioned GMRES (:func:`bem.linear.fgmres`) with FFT products and the line
+preconditioner.
 """
 
 from .active_set import ActiveSetResult, run_active_set

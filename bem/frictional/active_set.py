@@ -83,8 +83,9 @@ class ActiveSetResult:
 
 class LinearSolves:
     """The linear solves of one frictional solve: :class:`bem.linear.LinearSolver` (dense
-    LU up to ``dense_limit`` unknowns, GMRES reducing the residual of the correction to
-    the previous iterate by ``reduction`` above) with the line preconditioner."""
+    LU up to ``dense_limit`` unknowns, flexible GMRES reducing the residual of the
+    correction to the previous iterate by ``reduction``, or to :data:`RESIDUAL_FLOOR`
+    ``|b|``, above) with the line preconditioner."""
 
     def __init__(self, dense_limit: int, reduction: float = 1e-10):
         self.solver = LinearSolver(dense_limit, reduction, restart=200, maxiter=10, correction=True,
