@@ -14,8 +14,8 @@ p = ln((f1 - f2) / (f2 - f3)) / ln r, f_inf = f3 + (f3 - f2) / (r^p - 1).
 
 Usage::
 
-    python benchmarks/fem_rolling_3d.py [--levels 3] [--h0 1e-3] [--domain] [--bem]
-                                        [--json out.json]
+    python benchmarks/fem_rolling_3d.py [--levels 4] [--first 0] [--h0 1e-3] [--g0 0.2]
+                                        [--domain] [--superlu] [--bem] [--json out.json]
 
 ``--domain`` adds a solve at the first level with upstream, downstream and lateral
 lengths doubled; ``--bem`` runs ``bem solve`` on the case for its R_r.
@@ -41,11 +41,14 @@ KEYS = ("rolling_resistance", "rolling_resistance_energy", "indentation", "leadi
         "trailing_edge", "contact_length", "pressure_centroid_x", "energy_balance")
 
 
-def one(h: float, grading: float, far: float, scale_domain: float) -> dict:
-    """One solve in this process; a JSON-ready dict."""
+def one(h: float, grading: float, far: float, scale_domain: float, solver: str = "auto") -> dict:
+    """One solve in this process; a JSON-ready dict. ``solver``: the linear solver of
+    :mod:`fem_reference.rolling3d_solve` ("auto", "pardiso" or "superlu")."""
     from fem_reference import (ContactProblem, FemSettings, Indenter, Layer, Loading,
-                               ThreeParameterMaterial, solve)
+                               ThreeParameterMaterial, rolling3d_solve, solve)
     from fem_reference.rolling3d_discretization import resolve_box
+
+    rolling3d_solve.LINEAR_SOLVER = solver
 
     base = ContactProblem(Layer(H, 1000.0), ThreeParameterMaterial(3e6, 0.25, 1.0),
                           Indenter("sphere", 0.02), Loading(load=150.0, speed=0.05),
@@ -71,8 +74,9 @@ def one(h: float, grading: float, far: float, scale_domain: float) -> dict:
     return out
 
 
-def _child(h, grading, far, scale_domain):
-    cmd = [sys.executable, __file__, "--one", repr(h), repr(grading), repr(far), repr(scale_domain)]
+def _child(h, grading, far, scale_domain, solver="auto"):
+    cmd = [sys.executable, __file__, "--one", repr(h), repr(grading), repr(far), repr(scale_domain),
+           solver]
     res = subprocess.run(cmd, capture_output=True, text=True, check=False)
     if res.returncode != 0:
         raise RuntimeError(f"level h = {h} failed:\n{res.stderr[-2000:]}")
@@ -97,17 +101,19 @@ def bem_rr() -> float:
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--levels", type=int, default=3)
+    ap.add_argument("--levels", type=int, default=4)
     ap.add_argument("--first", type=int, default=0, help="index k of the coarsest level")
     ap.add_argument("--h0", type=float, default=1.0e-3)
-    ap.add_argument("--g0", type=float, default=0.3)
+    ap.add_argument("--g0", type=float, default=0.2)
     ap.add_argument("--domain", action="store_true")
     ap.add_argument("--bem", action="store_true")
     ap.add_argument("--json", default=None)
-    ap.add_argument("--one", nargs=4, type=float, help=argparse.SUPPRESS)
+    ap.add_argument("--superlu", action="store_true",
+                    help="also solve the first level with SuperLU (time, fill, memory)")
+    ap.add_argument("--one", nargs=5, help=argparse.SUPPRESS)
     args = ap.parse_args(argv)
     if args.one:
-        print(json.dumps(one(*args.one)))
+        print(json.dumps(one(*map(float, args.one[:4]), solver=args.one[4])))
         return 0
     rows = []
     for k in range(args.first, args.first + args.levels):
@@ -139,6 +145,15 @@ def main(argv=None):
                   f"{row['rolling_resistance_energy']:.6f} N, d {row['indentation'] * 1e3:.6f} mm, "
                   f"edges [{row['trailing_edge'] * 1e3:.5f}, {row['leading_edge'] * 1e3:.5f}] mm, "
                   f"{row['unknowns']} unknowns, {row['wall']:.0f} s", flush=True)
+    if args.superlu:
+        s = RATIO ** args.first
+        row = _child(args.h0 / s, args.g0 / s, H / s, 1.0, "superlu")
+        out["superlu"] = row
+        t = row["times"]
+        print(f"superlu at level {args.first}: R_r {row['rolling_resistance']:.6f} N, "
+              f"factorization {t['factorization']:.1f} s ({row['factor_nonzeros']} nonzeros), "
+              f"compliance {t['compliance']:.1f} s, total {row['wall']:.0f} s, peak "
+              f"{row['peak_memory'] / 2 ** 20:.0f} MiB", flush=True)
     if args.bem:
         out["bem"] = bem_rr()
         print(f"bem solve: R_r {out['bem']:.5f} N", flush=True)

@@ -10,7 +10,9 @@ Lengths (m): the material enters at x = upstream, undeformed and relaxed, and le
 x = -downstream; the half layer ends at y = lateral (``fem.domain_radius``, traction
 free). Defaults: upstream = lateral = Z + max(6 H, 4 a_est), downstream = Z + max(6 H,
 4 a_est, 6 V t_r), t_r the longest creep time. Shorter than Z + 2 max(H, a_est)
-(upstream, lateral) or Z + 2 max(H, a_est) + 3 V t_r (downstream) is an error.
+(upstream, lateral) or Z + 2 max(H, a_est) + 3 V t_r (downstream) is an error. The mesh
+is mirror-symmetric about x = 0 (:mod:`.mesh_box`), so both lengths become the larger of
+the two (``upstream`` = ``downstream`` in the resolved sizes).
 Element size h_c = ``fem.element_size`` (default min(a_est / 10, H / 5)) on the zone,
 growing as h_c + grading * distance up to ``fem.far_size`` (default H).
 """
@@ -103,7 +105,8 @@ def resolve_box(problem: ContactProblem) -> BoxDiscretization:
             f"leaves: it needs at least contact_zone + 2 max(H, a_est) + 3 V t_r = {need_down:.4g} m "
             f"(V t_r = {lv:.4g} m, the creep length at {problem.loading.speed:g} m/s); raise "
             "fem.downstream (default contact_zone + max(6 H, 4 a_est, 6 V t_r))")
+    length = max(upstream, downstream)  # the mesh is mirror-symmetric about x = 0
     return BoxDiscretization(element_size=h / 2 ** fem.refine, mesh_size=h, contact_zone=zone,
-                             upstream=upstream, downstream=downstream, lateral=lateral,
+                             upstream=length, downstream=length, lateral=lateral,
                              far_size=far, grading=fem.grading, estimated_radius=a,
                              creep_length=lv, refine=fem.refine)

@@ -121,7 +121,8 @@ def build_box_system(problem: ContactProblem, disc: BoxDiscretization) -> BoxSys
     """Mesh and assemble the half layer of ``problem`` (module docstring)."""
     t0 = time.perf_counter()
     H = problem.layer.thickness
-    mesh = half_box_mesh(H, disc.contact_zone, disc.upstream, disc.downstream, disc.lateral, disc)
+    mesh = half_box_mesh(H, disc.contact_zone, max(disc.upstream, disc.downstream), disc.lateral,
+                         disc)
     if disc.refine:
         mesh = mesh.refined(disc.refine)
     t1 = time.perf_counter()

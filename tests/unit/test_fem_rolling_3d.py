@@ -21,8 +21,13 @@ from fem_reference.rolling3d_result import SphereRollingResult
 
 H, R, P = 5e-3, 0.02, 150.0
 MAT = ThreeParameterMaterial(G0=3e6, tau=0.25, f=1.0)
-#: a coarse mesh for the fast tests (14k unknowns, 96 candidate nodes)
-COARSE = dict(model="3d", element_size=1.5e-3, contact_zone=9.5e-3, grading=0.5, fit_nodes=2)
+#: a coarse mesh on a short box for the fast tests (6-8k unknowns, about 100 candidate
+#: nodes; the lengths fit V = 0.01 m/s, creep length V tau = 2.5 mm)
+COARSE = dict(model="3d", element_size=1.5e-3, contact_zone=9.5e-3, grading=0.5, fit_nodes=2,
+              upstream=0.03, downstream=0.03, domain_radius=0.022)
+#: the stationary elastic contact (G = 3 MPa, P = 150 N) by the axisymmetric model at its
+#: default mesh (contact radius 5.0337 mm, indentation 0.72408 mm)
+AXI_RADIUS, AXI_INDENTATION = 5.033719e-3, 0.7240766e-3
 
 
 def _problem(material=MAT, speed=0.05, density=1000.0, load=P, **fem):
@@ -55,14 +60,44 @@ def test_components_rebuild_the_tensor_products():
     assert rf.traceless_inner(comps, w) == pytest.approx(np.sum(dev * ev), rel=1e-13)
 
 
+@pytest.mark.parametrize("length", [0.0386])
+def test_half_box_mesh_names_every_side_and_is_its_mirror_image(length):
+    """Every named side holds facets on its own plane (a short box once lost all names to
+    a bounding-box tolerance below OCC's padding), and the mesh is its own mirror image
+    about x = 0 with positive volumes."""
+    from fem_reference.mesh_box import NAMES, half_box_mesh
+
+    Z, lat = 8.585e-3, 0.0386
+    mesh = half_box_mesh(H, Z, length, lat,
+                         types.SimpleNamespace(mesh_size=2e-3, grading=0.5, far_size=H))
+    planes = {"base": (2, 0.0), "inflow": (0, length), "outflow": (0, -length), "sym_y": (1, 0.0),
+              "lateral": (1, lat), "zone": (2, H), "free": (2, H)}
+    for name in NAMES:
+        pts = mesh.p[:, mesh.facets[:, mesh.boundaries[name]]]
+        axis, value = planes[name]
+        assert pts.size and np.allclose(pts[axis], value, atol=1e-12)
+    zone = mesh.p[:, mesh.facets[:, mesh.boundaries["zone"]]]
+    assert np.all(np.hypot(zone[0], zone[1]) <= Z * (1 + 1e-9))
+    mirrored = {tuple(np.round(c, 12)) for c in (mesh.p * [[-1], [1], [1]]).T}
+    assert mirrored == {tuple(np.round(c, 12)) for c in mesh.p.T}
+    cent = mesh.p[:, mesh.t].mean(axis=1)
+    assert np.sum(cent[0] > 0) == np.sum(cent[0] < 0) == mesh.t.shape[1] // 2
+    e1, e2, e3 = (mesh.p[:, mesh.t[k]] - mesh.p[:, mesh.t[0]] for k in (1, 2, 3))
+    vol = np.einsum("ij,ij->j", np.cross(e1.T, e2.T).T, e3) / 6.0
+    assert np.all(vol > 0) or np.all(vol < 0)
+    assert abs(np.sum(np.abs(vol)) - 2 * length * lat * H) < 1e-9 * length * lat * H
+
+
 @pytest.mark.parametrize("fem, message", [
     (dict(upstream=5e-3), "fem.upstream = 0.005 m is too short: the material must enter undeformed"),
     (dict(downstream=3e-2), "fem.downstream = 0.03 m is too short for the material to relax"),
     (dict(domain_radius=1e-2), "fem.domain_radius = 0.01 m \\(the lateral extent y"),
 ])
 def test_short_domain_is_an_error_naming_the_setting(fem, message):
+    settings = dict(COARSE, upstream=None, downstream=None, domain_radius=None)
+    settings.update(fem)
     with pytest.raises(InputError, match=message):
-        solve(_problem(**fem))
+        solve(_problem(**settings))
 
 
 def test_speed_at_the_shear_wave_speed_is_an_error():
@@ -73,7 +108,7 @@ def test_speed_at_the_shear_wave_speed_is_an_error():
 def test_models_that_cannot_roll_a_sphere_say_so():
     with pytest.raises(InputError, match="speed must be 0 m/s: .*\\(a sphere rolls in \\[fem\\] "
                                          "model = \"3d\""):
-        _problem(model="axisymmetric", element_size=None)
+        _problem(model="axisymmetric", element_size=None, upstream=None, downstream=None)
     with pytest.raises(InputError, match="the 3d rolling model .* takes a sphere only"):
         ContactProblem(Layer(H), MAT, Indenter("paraboloid", R), Loading(load=P, speed=0.05),
                        FemSettings(model="3d"))
@@ -91,8 +126,8 @@ def test_master_curve_table_is_refused_for_the_3d_rolling_model():
 
 @pytest.fixture(scope="module")
 def coarse():
-    """The section 11 case on the coarse mesh."""
-    return solve(_problem())
+    """The section 11 layer at V = 0.01 m/s on the coarse mesh."""
+    return solve(_problem(speed=0.01))
 
 
 def test_result_sums_and_fields(coarse):
@@ -107,36 +142,32 @@ def test_result_sums_and_fields(coarse):
     assert np.all(np.diff(r.pressure_x) > 0)
     assert np.all(r.pressure_x ** 2 <= r.mesh.contact_zone ** 2 * (1 + 1e-12))
     # the odd strain components vanish on the symmetry plane, u_y too
-    mesh, wb = system.mesh, system.wbasis
+    wb, ub = system.wbasis, system.ubasis
     on_plane = wb.get_dofs("sym_y").all()
-    for b, comps in enumerate(r.fields["w"]):
+    for comps in r.fields["w"]:
         assert np.all(comps[2][on_plane] == 0) and np.all(comps[4][on_plane] == 0)
         assert np.max(np.abs(comps[0][on_plane])) > 0
+    assert np.all(r.fields["u"][ub.get_dofs("sym_y").all("u^2")] == 0)
     # the viscoelastic contact leads: shifted forward, R_r > 0, pressure power > 0
     assert r.rolling_resistance > 0 and r.contact_centre > 0 and r.pressure_power > 0
     assert r.trailing_edge < 0 < r.leading_edge
-    # the energy balance holds to the coarse mesh's error (measured +0.4% here, -3.7% at
-    # h = 1 mm with the default grading, -0.9% at the default 0.57 mm)
-    assert abs(r.energy_balance) < 0.08
-    # and R_r is near the BEM's 3.0257 N already (measured 2.738 N here)
-    assert r.rolling_resistance == pytest.approx(3.0257, rel=0.15)
+    # the energy balance holds to the coarse mesh's error (measured +7.4% here; -0.02% on
+    # the 154k-unknown mesh of the section 11 case, BENCHMARKS.md)
+    assert abs(r.energy_balance) < 0.15
 
 
-@pytest.mark.slow
 def test_elastic_layer_rolls_without_resistance_like_the_stationary_model():
-    """Elastic layer, no inertia: rolling is the stationary contact, so R_r is zero up to
-    the unstructured mesh's asymmetry and the indentation and contact size match the
-    stationary 3D model (quarter cylinder, a different mesh) to the meshes' error."""
-    e = solve(_problem(material=ElasticMaterial(3e6), density=0.0, element_size=1e-3,
-                       contact_zone=None, grading=0.3, fit_nodes=3))
+    """Elastic layer, no inertia: rolling is the stationary contact. On the mirror-symmetric
+    mesh R_r vanishes (measured 1.4e-8 N: the partial-solve round-off), the edges are
+    symmetric, and indentation and contact radius match the axisymmetric model (measured
+    +0.36% and -0.01% on this coarse mesh)."""
+    e = solve(_problem(material=ElasticMaterial(3e6), density=0.0, speed=0.01))
     assert e.dissipation == 0.0
     a_line = 0.5 * e.contact_length
-    assert abs(e.rolling_resistance) < 0.01 * P * a_line / R
-    assert abs(e.contact_centre) < 0.02 * a_line
-    stationary = solve(ContactProblem(Layer(H), ElasticMaterial(3e6), Indenter("sphere", R),
-                                      Loading(load=P), FemSettings(model="3d", element_size=1e-3)))
-    assert e.indentation == pytest.approx(stationary.indentation, rel=0.01)
-    assert a_line == pytest.approx(stationary.contact_radius, rel=0.03)
+    assert abs(e.rolling_resistance) < 1e-7 * P * a_line / R
+    assert abs(e.contact_centre) < 1e-6 * a_line
+    assert e.indentation == pytest.approx(AXI_INDENTATION, rel=0.01)
+    assert a_line == pytest.approx(AXI_RADIUS, rel=0.01)
 
 
 @pytest.mark.slow
