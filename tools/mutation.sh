@@ -8,6 +8,8 @@
 #   MUTATION_REF=<commit>  tools/mutation.sh ...    mutate/test another commit
 #   MUTATION_DIR=<dir>     tools/mutation.sh ...    scratch directory (default /tmp/viscolayer-mutation/<module>)
 #   MUTATION_NAMES='<mutant names or globs>' ...    only these mutants (e.g. the survivors of a full run)
+#   MUTATION_PYTEST_ARGS='--deselect NODE ...' ...  more pytest arguments (split on spaces), e.g. leave
+#                                                   out a slow test that only some functions need
 #   MUTATION_TIMEOUT_MULTIPLIER=<x> ...             a mutant times out after x (its tests' clean time
 #                                                   + 1 s) wall seconds (2x that in CPU); default 6: mutmut's
 #                                                   own 15 let a runaway mutant of a 20 s test set burn 10 min,
@@ -66,7 +68,7 @@ source_paths = ["bem/", "fem_reference/", "verification/", "casefile/", "sweeps/
 only_mutate = ["$module"]
 also_copy = ["examples/", "docs/", "benchmarks/", "README.md"]
 pytest_add_cli_args_test_selection = $(toml_list "${present[@]}")
-pytest_add_cli_args = ["-x", "-q", "-p", "no:cacheprovider", "-m", "not slow"]
+pytest_add_cli_args = $(toml_list -x -q -p no:cacheprovider -m "not slow" ${MUTATION_PYTEST_ARGS:-})
 timeout_multiplier = ${MUTATION_TIMEOUT_MULTIPLIER:-6}
 TOML
 # hypothesis in mutation runs: fixed examples, no shrinking (a killed mutant needs no
