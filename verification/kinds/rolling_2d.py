@@ -4,7 +4,8 @@ solution and against each other; optionally repeated for several layer thickness
 
 Speeds are given as ``V tau / b0`` (``[speeds] scaled``, tau the material's creep time,
 b0 = sqrt(P R / (pi G0)) the 2D Hertz half-width with the relaxed modulus) or in m/s
-(``[speeds] values``); thicknesses as ``H / b0`` (``[layers] scaled``).
+(``[speeds] values``), with ``[speeds] quick`` the subset ``verify --quick`` runs;
+thicknesses as ``H / b0`` (``[layers] scaled``).
 
 How errors are measured (one gate = the largest error over the speeds):
 
@@ -42,7 +43,8 @@ ADDS_METHODS = True
 SECTIONS = ("analytic", "bem", "fem", "methods", "speeds", "layers")
 QUANTITIES = ("rolling_resistance", "leading_edge", "trailing_edge", "indentation", "peak_pressure", "pressure_rms_interior")
 SPEEDS = {"scaled": Field("numbers", positive=True, doc="V tau / b0 (-)"),
-          "values": Field("numbers", positive=True, doc="V (m/s)")}
+          "values": Field("numbers", positive=True, doc="V (m/s)"),
+          "quick": Field("numbers", positive=True, doc="the speeds verify --quick runs, in the list's unit")}
 LAYERS = {"scaled": Field("numbers", True, positive=True, doc="H / b0 (-)"),
           "fem_elements_across": Field("number", positive=True,
                                        doc="the FEM's element size is at most H / this, on every layer")}
@@ -61,10 +63,14 @@ def scales(problem: dict) -> tuple[float, float]:
     return b0, tau
 
 
-def _speeds(case: dict) -> list[float]:
+def _speeds(case: dict, quick: bool = False) -> list[float]:
+    """The speeds (m/s); with ``quick``, only those of ``[speeds] quick`` if it is given."""
     b0, tau = scales(case["problem"])
     s = case["speeds"]
-    return [x * b0 / tau for x in s["scaled"]] if "scaled" in s else list(s["values"])
+    given = s["scaled"] if "scaled" in s else s["values"]
+    if quick and "quick" in s:
+        given = [x for x in given if x in s["quick"]]
+    return [x * b0 / tau for x in given] if "scaled" in s else list(given)
 
 
 def _parts(case: dict):
@@ -98,8 +104,12 @@ def check(case: dict, path, methods: dict) -> None:
     if "speeds" not in case:
         raise CaseError(f"{path}: a rolling-2d case needs [speeds] scaled (V tau / b0) or values (m/s)")
     check_table(case["speeds"], SPEEDS, f"{path} [speeds]")
-    if len(case["speeds"]) != 1:
+    listed = [k for k in ("scaled", "values") if k in case["speeds"]]
+    if len(listed) != 1:
         raise CaseError(f"{path} [speeds]: give exactly one of scaled and values")
+    extra = [x for x in case["speeds"].get("quick", []) if x not in case["speeds"][listed[0]]]
+    if extra:
+        raise CaseError(f"{path} [speeds] quick: {extra} not in {listed[0]} (the quick speeds are a subset)")
     if "scaled" in case["speeds"] or "layers" in case:
         if problem["material"]["model"] not in ("three_parameter", "prony"):
             raise CaseError(f"{path}: scaled speeds need a material with a time scale (three_parameter, prony)")
@@ -143,7 +153,7 @@ class _Reference:
 
 def _solve_part(case: dict, ctx, label: str, result: CaseResult) -> dict:
     """Every method at every speed (finest level last); returns {method: [runs per speed]}."""
-    speeds = _speeds(case)
+    speeds = _speeds(case, ctx.quick)
     failed = result.extra.setdefault("failed", {})
     out = {}
     for name in _used(case):
@@ -203,7 +213,7 @@ def _energy_errors(runs, speeds) -> list[float]:
 def run(case: dict, ctx) -> CaseResult:
     t0 = time.perf_counter()
     result = CaseResult(case["name"], case["title"], case.get("why", ""), case["kind"])
-    speeds = _speeds(case)
+    speeds = _speeds(case, ctx.quick)
     result.extra["speeds"] = speeds
     result.extra["scales"] = scales(case["problem"])
     parts = []
