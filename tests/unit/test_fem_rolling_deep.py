@@ -137,22 +137,25 @@ def test_moving_contact_is_hertz_with_the_moving_modulus(moving_and_resting):
 
 @pytest.mark.slow
 @pytest.mark.parametrize("scaled", [0.1, 1.0, 100.0])
-def test_deep_layer_against_hunter(scaled):
-    """The recommended configuration of rolling-halfspace-2d's FEM: H = 1000 b0, h =
-    b0 / 30, the other [fem] defaults. Measured (all nine case speeds): R_r within 0.148%
-    of Hunter's peak R_r, D / V within 0.05%, the edges within 0.18% of the contact length;
-    here 0.3%, 0.15% and 0.3% (the issue's gates: 1% and 0.5%)."""
+@pytest.mark.parametrize("grading, tol_rr, tol_dv, tol_edge", [(0.5, 5e-3, 3.5e-3, 3e-3),
+                                                              (0.3, 3e-3, 1.5e-3, 3e-3)])
+def test_deep_layer_against_hunter(scaled, grading, tol_rr, tol_dv, tol_edge):
+    """rolling-halfspace-2d's FEM: H = 1000 b0, h = b0 / 30, [fem] grading 0.5 (the
+    recommended configuration) or 0.3 (the default). Measured over all nine case speeds:
+    R_r within 0.334% (0.148%) of Hunter's peak R_r, D / V 0.234% (0.049%), the edges
+    0.185% (0.180%) of the contact length; allowed here as in the parameters (the
+    issue's gates: 1% and 0.5%)."""
     from verification.analytic import hunter_rolling_contact
 
     peak = hunter_rolling_contact(P, R, G0, TAU, F, B0 / TAU).rolling_resistance  # the sweep's peak
     V = scaled * B0 / TAU
     ref = hunter_rolling_contact(P, R, G0, TAU, F, V)
-    res = fr.solve(_problem(1000, speed=V, element_size=B0 / 30))
+    res = fr.solve(_problem(1000, speed=V, element_size=B0 / 30, grading=grading))
     length = ref.leading_edge - ref.trailing_edge
-    assert abs(res.rolling_resistance - ref.rolling_resistance) < 3e-3 * peak
-    assert abs(res.rolling_resistance_energy - ref.rolling_resistance) < 1.5e-3 * peak
-    assert abs(res.leading_edge - ref.leading_edge) < 3e-3 * length
-    assert abs(res.trailing_edge - ref.trailing_edge) < 3e-3 * length
+    assert abs(res.rolling_resistance - ref.rolling_resistance) < tol_rr * peak
+    assert abs(res.rolling_resistance_energy - ref.rolling_resistance) < tol_dv * peak
+    assert abs(res.leading_edge - ref.leading_edge) < tol_edge * length
+    assert abs(res.trailing_edge - ref.trailing_edge) < tol_edge * length
 
 
 @pytest.mark.slow
