@@ -19,7 +19,7 @@
 #
 # Without TEST_FILE the default list of fast test files for MODULE (below) is used.
 # Prints the summary line (killed / survived / ... / score) and the survivors' diffs;
-# `cd $MUTATION_DIR && mutmut show NAME` shows one mutant. Runs under `nice -n 19` with
+# `cd $MUTATION_DIR && mutmut show NAME` shows one mutant. Runs under `nice -n 15` with
 # one worker (the machine is shared); each mutant's tests run fastest first, so a killed
 # mutant costs its cheapest failing test. See TESTING.md.
 set -euo pipefail
