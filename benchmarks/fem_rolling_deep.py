@@ -19,6 +19,7 @@ band), without solving.
 ``... --depth [V tau / b0]``: R_r, D / V, edges and indentation for H / b0 = 10 .. 2560,
 the observed order of the depth convergence and the Richardson limit.
 ``... --mesh``: the element size (b0 / 20 .. b0 / 60) at H = 1000 b0, V tau / b0 = 1.
+``... --lengths``: the upstream and downstream lengths halved and doubled.
 ``... --inertia``: an elastic layer at 0.6 of the shear-wave speed against 2D Hertz with
 the moving modulus, and the same-width contact at rest on the same mesh.
 """
@@ -164,6 +165,24 @@ def run_mesh():
               flush=True)
 
 
+def run_lengths():
+    """R_r and edges at the recommended configuration with the upstream and downstream
+    lengths (default Z + 8 H each) halved and doubled."""
+    peak = max(abs(hunter(s).rolling_resistance) for s in SCALED)
+    H = DEPTH * B0
+    for scaled in (1.0, 100.0):
+        base, _ = solve(scaled, grading=GRADING)
+        for k in (0.5, 2.0):
+            res, t = solve(scaled, grading=GRADING, upstream=k * base.mesh.upstream,
+                           downstream=k * base.mesh.downstream)
+            L = base.contact_length
+            print(f"V tau/b0 = {scaled:g}, lengths x {k:g} ({res.mesh.upstream / H:.1f} H, "
+                  f"{res.mesh.downstream / H:.1f} H): R_r {(res.rolling_resistance - base.rolling_resistance) / peak:+.2e} "
+                  f"of the peak, edges {(res.trailing_edge - base.trailing_edge) / L:+.1e} / "
+                  f"{(res.leading_edge - base.leading_edge) / L:+.1e} of L, {res.mesh.unknowns} unknowns "
+                  f"({base.mesh.unknowns} at the defaults)", flush=True)
+
+
 def run_inertia():
     rho, M = 1000.0, 0.6
     beta = math.sqrt(1 - M * M)
@@ -188,6 +207,7 @@ if __name__ == "__main__":
     ap.add_argument("--depth", nargs="?", const=1.0, type=float, default=None, metavar="V_TAU_OVER_B0")
     ap.add_argument("--mesh", action="store_true")
     ap.add_argument("--inertia", action="store_true")
+    ap.add_argument("--lengths", action="store_true")
     ap.add_argument("--H", type=float, default=DEPTH, help="H / b0 of --hunter")
     ap.add_argument("--size", type=float, default=SIZE, help="b0 / h of --hunter")
     ap.add_argument("--grading", type=float, default=GRADING, help="[fem] grading of --hunter")
@@ -200,5 +220,7 @@ if __name__ == "__main__":
         run_mesh()
     if a.inertia:
         run_inertia()
-    if a.hunter or not (a.counts or a.depth is not None or a.mesh or a.inertia):
+    if a.lengths:
+        run_lengths()
+    if a.hunter or not (a.counts or a.depth is not None or a.mesh or a.inertia or a.lengths):
         run_hunter(a.H, a.size, a.grading)
