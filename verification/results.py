@@ -32,12 +32,16 @@ class Level:
         ``[bem] period`` and ``half_width``, ``[fem] model``).
     case : str
         The case's name (an external results file is looked up by it).
+    sizes : tuple
+        Every level's size, coarse to fine (a method may scale other settings with
+        ``size / sizes[0]``).
     """
 
     index: int
     size: float | None
     settings: dict
     case: str = ""
+    sizes: tuple = ()
 
 
 @dataclass

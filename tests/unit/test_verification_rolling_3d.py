@@ -122,3 +122,20 @@ def test_bad_cases_are_refused_before_anything_is_solved(tmp_path, capsys, edit,
         return
     assert verify_main(["--cases-dir", str(folder), "--out", str(tmp_path / "out")]) == 2
     assert message in capsys.readouterr().err
+
+
+def test_scaled_fem_settings_refine_the_whole_mesh_with_the_element_size():
+    from verification.methods import fem
+    from verification.results import Level
+    from verification.schema import CaseError
+
+    settings = {"model": "3d", "grading": 0.2, "far_size": 5e-3, "scaled": ["grading", "far_size"]}
+    level = Level(index=2, size=0.5e-3, settings=settings, sizes=(1e-3, 0.75e-3, 0.5e-3))
+    got = fem._at_level(level)
+    assert got == {"model": "3d", "grading": pytest.approx(0.1), "far_size": pytest.approx(2.5e-3)}
+    problem = {"layer": {"thickness": 5e-3}, "material": {"model": "elastic", "shear_modulus": 3e6},
+               "indenter": {"shape": "sphere", "radius": 0.02}, "loading": {"load": 150.0}}
+    with pytest.raises(CaseError, match="'far_size' is scaled but not given"):
+        fem.check({"element_sizes": [1e-3], "grading": 0.2, "scaled": ["grading", "far_size"]}, problem, "[fem]")
+    with pytest.raises(CaseError, match="scaled"):
+        fem.check({"element_sizes": [1e-3], "scaled": ["contact_zone"]}, problem, "[fem]")

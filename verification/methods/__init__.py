@@ -67,7 +67,8 @@ class Method:
         else:
             sizes = settings.get(self.sizes_key, [None])
         rest = {k: v for k, v in settings.items() if k not in (self.sizes_key, "entry", "results")}
-        return [Level(index=i, size=s, settings=rest, case=case["name"]) for i, s in enumerate(sizes)]
+        return [Level(index=i, size=s, settings=rest, case=case["name"], sizes=tuple(sizes))
+                for i, s in enumerate(sizes)]
 
 
 def builtin() -> dict[str, Method]:

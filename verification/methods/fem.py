@@ -16,14 +16,21 @@ __all__ = ["FIELDS", "check", "run", "run_line", "run_rolling", "solve"]
 
 FIELDS = {
     "element_sizes": Field("numbers", True, positive=True, doc="element sizes at the contact (m), coarse to fine"),
+    "scaled": Field("strings", choices=("grading", "far_size"),
+                    doc="settings multiplied by element_size / element_sizes[0] at each level, so that the "
+                        "whole mesh refines (systematic refinement); given at the first level"),
 }
 
 
 def check(settings: dict, problem: dict, where: str) -> None:
-    """``[fem]``: ``element_sizes`` and any key of the case-file schema's ``[fem]``
-    section, checked by :func:`casefile.validate` as ``fem-reference solve`` would."""
+    """``[fem]``: ``element_sizes``, ``scaled`` and any key of the case-file schema's
+    ``[fem]`` section, checked by :func:`casefile.validate` as ``fem-reference solve``
+    would."""
     check_table(settings, FIELDS, where, open_=True)
-    rest = {k: v for k, v in settings.items() if k != "element_sizes"}
+    rest = {k: v for k, v in settings.items() if k not in FIELDS}
+    for key in settings.get("scaled", []):
+        if key not in rest:
+            raise CaseError(f"{where} scaled: {key!r} is scaled but not given (give its value at the first level)")
     if "element_size" in rest:
         raise CaseError(f"{where}: give the levels as element_sizes, not element_size")
     try:
@@ -95,12 +102,21 @@ def run_rolling(problem_cfg: dict, settings: dict, size: float) -> Run:
     return Run("fem", size, scalars, np.asarray(res.pressure_x), np.asarray(res.pressure), seconds)
 
 
+def _at_level(level: Level) -> dict:
+    """The level's settings with the ``scaled`` ones multiplied by ``size / sizes[0]``."""
+    settings = {k: v for k, v in level.settings.items() if k != "scaled"}
+    for key in level.settings.get("scaled", []):
+        settings[key] = settings[key] * level.size / level.sizes[0]
+    return settings
+
+
 def solve(problem: dict, level: Level) -> Run:
     """The method protocol: the case's ``[problem]`` at one level of ``[fem] element_sizes``
     (steady rolling in plane strain for ``[indenter] shape = "line"``; of a sphere in 3D
     for a speed > 0)."""
+    settings = _at_level(level)
     if problem["indenter"].get("shape") == "line":
-        return run_line(problem, level.settings, level.size)
+        return run_line(problem, settings, level.size)
     if problem["loading"].get("speed", 0.0) > 0:
-        return run_rolling(problem, level.settings, level.size)
-    return run(problem, level.settings, level.size)
+        return run_rolling(problem, settings, level.size)
+    return run(problem, settings, level.size)
