@@ -258,7 +258,8 @@ def test_line_preconditioner_inverts_a_contact_on_one_grid_row(kernels):
     M A x = x (the inverse of the running sum, the displacement ahead of each run and the
     slip rows are all in the line's block). With the coupling, or on two rows, it is not.
     In double precision the inverse is exact to 1e-9 (|x| ~ 1); stored in single precision
-    (the default) to 1e-5 (measured 2.3e-7; double: 9e-16)."""
+    (the default) to 1e-5 (measured 2.3e-7; double: 9e-16); the same by LU factors (the
+    long lines') as by inverses."""
     from bem.frictional.preconditioner import LinePreconditioner
 
     Ky, Kx = GRID.shape
@@ -271,9 +272,10 @@ def test_line_preconditioner_inverts_a_contact_on_one_grid_row(kernels):
         assert 0 < system.A.size < C.size
         y = x[:system.n]
         for dtype, tol in ((np.float64, 1e-9), (np.float32, 1e-5)):
-            LinePreconditioner(dtype=dtype).attach(system)
-            err = np.abs(system.precondition(system.matvec(y)) - y).max()
-            assert (err < tol) if exact else (err > 1e-3), (dtype, err)
+            for lu_from in (1, 1000):  # LU factors (long lines), inverses
+                LinePreconditioner(dtype=dtype, lu_from=lu_from).attach(system)
+                err = np.abs(system.precondition(system.matvec(y)) - y).max()
+                assert (err < tol) if exact else (err > 1e-3), (dtype, lu_from, err)
 
 
 @pytest.mark.parametrize("mode, omega", [("pushed_at_top", None), ("towed", None), ("torque", None),
