@@ -18,7 +18,9 @@ Usage::
                                         [--domain] [--superlu] [--bem] [--json out.json]
 
 ``--domain`` adds a solve at the first level with upstream, downstream and lateral
-lengths doubled; ``--bem`` runs ``bem solve`` on the case for its R_r.
+lengths doubled; ``--superlu`` the first level with SuperLU instead of Pardiso; ``--bem``
+solves the case with the BEM: its R_r and its horizontal force sum F ds/dx, which the
+FEM's D/V equals in the continuum (energy balance; 1.0167 R_r here, a/R = 0.22).
 """
 
 from __future__ import annotations
@@ -93,10 +95,23 @@ def richardson(f1, f2, f3, r=RATIO):
     return p, f3 - d2 / (r ** p - 1.0)
 
 
-def bem_rr() -> float:
-    res = subprocess.run([os.path.join(os.path.dirname(sys.executable), "bem"), "solve", CASE,
-                          "--json"], capture_output=True, text=True, check=True)
-    return float(json.loads(res.stdout)["rolling_resistance"])
+def bem_figures() -> dict:
+    """The BEM on the case file: R_r = sum F x / R (N), the horizontal force sum F ds/dx
+    (N; what D / V of the FEM equals by the energy balance, exact sphere slope
+    ds/dx = x / sqrt(R^2 - x^2 - y^2)), the indentation (m) and the time (s)."""
+    import numpy as np
+
+    from bem import solve_frictionless
+    from bem.case import problem_from_config, read_case
+
+    t0 = time.perf_counter()
+    problem, _ = problem_from_config(read_case(CASE))
+    r, _ = solve_frictionless(problem)  # the contact and the timings
+    X, Y = r.grid.coordinates()
+    R = 0.02
+    return {"rolling_resistance": float(r.rolling_resistance),
+            "horizontal_force": float(np.sum(r.force * X / np.sqrt(R * R - X * X - Y * Y))),
+            "indentation": float(r.indentation), "wall": time.perf_counter() - t0}
 
 
 def main(argv=None):
@@ -155,8 +170,15 @@ def main(argv=None):
               f"compliance {t['compliance']:.1f} s, total {row['wall']:.0f} s, peak "
               f"{row['peak_memory'] / 2 ** 20:.0f} MiB", flush=True)
     if args.bem:
-        out["bem"] = bem_rr()
-        print(f"bem solve: R_r {out['bem']:.5f} N", flush=True)
+        b = out["bem"] = bem_figures()
+        print(f"bem: R_r {b['rolling_resistance']:.5f} N, sum F ds/dx {b['horizontal_force']:.5f} N "
+              f"(the FEM's D/V), indentation {b['indentation'] * 1e3:.5f} mm ({b['wall']:.0f} s)",
+              flush=True)
+        if rows:
+            f = rows[-1]
+            print(f"finest FEM against the BEM: R_r {f['rolling_resistance'] / b['rolling_resistance'] - 1:+.3%}, "
+                  f"D/V {f['rolling_resistance_energy'] / b['horizontal_force'] - 1:+.3%}, indentation "
+                  f"{f['indentation'] / b['indentation'] - 1:+.3%}", flush=True)
     if args.json:
         with open(args.json, "w") as fh:
             json.dump(out, fh, indent=1)

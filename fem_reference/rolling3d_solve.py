@@ -4,13 +4,12 @@
    :func:`~.rolling3d_system.build_box_system` meshes and assembles.
 2. The surface compliance W = C S^-1 C^T of the candidate half disk takes one solve
    per candidate node, all right-hand sides in blocks. With MKL Pardiso (pypardiso
-   installed) a first factorization serves Pardiso's partial solve: the right-hand
-   sides and the wanted entries are the same few u_z unknowns of the zone, so each
-   solve touches only their paths in the elimination tree (8 times faster measured);
-   a second, full factorization (weighted matching, iterative refinement) solves for
-   the fields, and W lam is checked against C x of that solve (W is computed again with
-   the full factorization when they differ by more than ``PARTIAL_TOLERANCE``). Without pypardiso,
-   one SuperLU factorization does both.
+   installed) the factorization serves Pardiso's partial solve: the right-hand sides and
+   the wanted entries are the same few u_z unknowns of the zone, so each solve touches
+   only their paths in the elimination tree (8 times faster measured); the same factors
+   then solve for the fields (whole solution, iteratively refined), and W lam is checked
+   against C x of that solve (W is computed again by full solves when they differ by
+   more than ``PARTIAL_TOLERANCE``). Without pypardiso, SuperLU does both.
 3. :func:`~.contact.solve_contact` finds pressures and indentation for half the load.
 4. One more solve gives the fields; edges on y = 0, rolling resistance, the dashpots'
    dissipation (both halves) follow.
@@ -49,8 +48,8 @@ PARTIAL_TOLERANCE = 1e-4
 
 def _compliance(system: BoxSystem, solver, say) -> np.ndarray:
     """W = C S^-1 C^T (m^6/N: weighted gap per unit nodal multiplier), one solve per
-    column; a block whose relative residual exceeds 1e-10 gets a step of iterative
-    refinement."""
+    column; a block whose relative residual exceeds 1e-10 gets iterative refinement
+    (not with Pardiso's partial solve, checked afterwards in :func:`solve_rolling_3d`)."""
     C = system.C
     n_c = C.shape[0]
     W = np.empty((n_c, n_c))
@@ -58,9 +57,10 @@ def _compliance(system: BoxSystem, solver, say) -> np.ndarray:
         stop = min(start + BLOCK, n_c)
         rhs = C[start:stop].T.toarray()
         x = solver._apply(rhs)
-        rel = np.linalg.norm(rhs - system.S @ x, axis=0) / np.linalg.norm(rhs, axis=0)
-        if rel.max() > 1e-10:  # one step of iterative refinement only where needed
-            x = solver.solve(rhs)
+        if not getattr(solver, "partial", False):  # a partial solution has no residual
+            rel = np.linalg.norm(rhs - system.S @ x, axis=0) / np.linalg.norm(rhs, axis=0)
+            if rel.max() > 1e-10:  # iterative refinement only where needed
+                x = solver.solve(rhs)
         W[:, start:stop] = C @ x
         if n_c > BLOCK:
             say(f"surface compliance: {stop}/{n_c} columns")
@@ -114,23 +114,18 @@ def solve_rolling_3d(problem: ContactProblem,
     say(f"{system.mesh.t.shape[1]} tetrahedra, {system.n_unknowns} unknowns, "
         f"{len(system.m)} contact candidate nodes")
     partial = LINEAR_SOLVER != "superlu" and pardiso_available()
-    part_memory = float("nan")
-    if partial:  # Pardiso's partial solve for W, then a full factorization for the fields
-        part = PardisoSolver(system.S, system.scale, selected=np.unique(system.C.indices))
-        say(f"pardiso (partial solve): factorized in {part.setup_time:.1f} s ({part.fill} nonzeros)")
-        t1 = time.perf_counter()
-        W = _compliance(system, part, say)
-        times["compliance"] = time.perf_counter() - t1 + part.setup_time
-        part_memory = part.memory
-        part.free()
-        del part
-    solver = sparse_lu(system.S, system.scale, prefer=LINEAR_SOLVER)
+    if partial:  # Pardiso's partial solve for W, then full solves on the same factors
+        solver = PardisoSolver(system.S, system.scale, selected=np.unique(system.C.indices))
+    else:
+        solver = sparse_lu(system.S, system.scale, prefer=LINEAR_SOLVER)
     times["factorization"] = solver.setup_time
-    say(f"{solver.name}: factorized in {solver.setup_time:.1f} s ({solver.fill} nonzeros)")
-    if not partial:
-        t1 = time.perf_counter()
-        W = _compliance(system, solver, say)
-        times["compliance"] = time.perf_counter() - t1
+    say(f"{solver.name}{' (partial solve)' if partial else ''}: factorized in "
+        f"{solver.setup_time:.1f} s ({solver.fill} nonzeros)")
+    t1 = time.perf_counter()
+    W = _compliance(system, solver, say)
+    times["compliance"] = time.perf_counter() - t1
+    if partial:
+        solver.full_solves()
     load = problem.loading.load
 
     def contact(W):
@@ -147,7 +142,7 @@ def solve_rolling_3d(problem: ContactProblem,
     t3 = time.perf_counter()
     x = solver.solve(-(system.C.T @ sol.pressure))
     times["fields"] = time.perf_counter() - t3
-    if partial:  # the partial solve's W against the fields of the full, refined solve
+    if partial:  # the partial solves' W against the fields of the full, refined solve
         Wl = W @ sol.pressure
         mismatch = float(np.linalg.norm(system.C @ x + Wl) / np.linalg.norm(Wl))
         times["compliance_check"] = mismatch
@@ -218,8 +213,7 @@ def solve_rolling_3d(problem: ContactProblem,
                 "pbasis": system.pbasis, "wbasis": system.wbasis, "system": system},
         zone_xy=xy, zone_pressure=lam,
         lateral_edge=float(xy[sol.active, 1].max()) if sol.active.any() else 0.0,
-        peak_memory=peak, factor_memory=max(float(getattr(solver, "memory", np.nan)), part_memory)
-        if partial else float("nan"))
+        peak_memory=peak, factor_memory=float(getattr(solver, "memory", np.nan)))
     say(f"done: R_r {result.rolling_resistance:.6e} N (D/V {result.rolling_resistance_energy:.6e} N), "
         f"edges on y = 0 [{trail:.5e}, {lead:.5e}] m, indentation {sol.indentation:.5e} m "
         f"({times['total']:.1f} s)")
