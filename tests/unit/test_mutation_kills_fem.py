@@ -181,9 +181,18 @@ def _top_vertices_of(mesh, H, on_line):
     return np.sort(r)
 
 
-@pytest.fixture(scope="module")
-def fine_solve():
-    """h = 0.1 mm: 70 candidate nodes, so the surface compliance takes two blocks of 64."""
+def test_solve_reports_its_mesh_record_and_progress():
+    """h = 0.1 mm: 70 candidate nodes, so the surface compliance takes two blocks of 64.
+
+    MeshStats and the surface arrays against counts recomputed from the returned mesh:
+    bonded base (both components of the P2 displacement on its Vb vertices and Vb - 1 edge
+    midpoints) and axis (u_r on its Va vertices and Va - 1 midpoints, the corner shared)
+    are the fixed dofs. The solver record against what the solve did: primal-dual
+    iterations = entries of the history, direct solver (no iterations), complementarity
+    and linear residuals at round-off (measured 6e-15 and 1.5e-14), stage times that add
+    up within the total, the total within the wall time; one progress line per stage and
+    per block of 64 compliance columns, numbers as in the result. (One solve in the test
+    itself, not in a shared fixture, so that every check runs on each mutant of solve.)"""
     import time
 
     from fem_reference.discretization import resolve
@@ -192,15 +201,9 @@ def fine_solve():
     problem = _thick_problem(element_size=1e-4)
     t0 = time.perf_counter()
     res = solve(problem, lines.append)
-    return res, lines, resolve(problem), time.perf_counter() - t0
+    wall = time.perf_counter() - t0
+    disc = resolve(problem)
 
-
-def test_solve_reports_its_mesh_from_the_mesh_it_returns(fine_solve):
-    """MeshStats and the surface arrays against counts recomputed from the returned mesh:
-    bonded base (both components of the P2 displacement on its Vb vertices and Vb - 1 edge
-    midpoints) and axis (u_r on its Va vertices and Va - 1 midpoints, the corner shared)
-    are the fixed dofs."""
-    res, _, disc, _ = fine_solve
     mesh, ub, pb = (res.fields[k] for k in ("mesh", "ubasis", "pbasis"))
     assert set(res.fields) == {"mesh", "u", "p", "ubasis", "pbasis"}
     Vb = int(np.sum(mesh.p[1] == 0.0))
@@ -220,15 +223,7 @@ def test_solve_reports_its_mesh_from_the_mesh_it_returns(fine_solve):
     assert res.surface_uz.shape == res.surface_radius.shape
     assert abs(res.surface_uz[0] + res.indentation) <= 2e-3 * res.indentation
 
-
-def test_solve_record_and_progress(fine_solve):
-    """The solver record against what the solve did: primal-dual iterations = entries of
-    the history, direct solver (no iterations), complementarity and linear residuals at
-    round-off (measured 6e-15 and 1.5e-14), stage times that add up within the total,
-    the total within the wall time; one progress line per stage and per block of 64
-    compliance columns, numbers as in the result."""
-    res, lines, disc, wall = fine_solve
-    r, s = res.solver, res.mesh
+    r = res.solver
     assert r.method == "primal-dual" and r.iterations == len(r.history) >= 2
     assert r.history[-1] == int(np.sum(res.pressure > 0))
     assert 0 <= r.residual < 1e-12 and 0 <= r.linear_residual < 1e-12
@@ -246,6 +241,40 @@ def test_solve_record_and_progress(fine_solve):
     assert sum(line.startswith("contact iteration ") for line in lines) == r.iterations
     assert lines[-1].startswith(f"done: contact radius {res.contact_radius:.5e} m, indentation "
                                 f"{res.indentation:.5e} m, peak pressure {res.peak_pressure:.5e} Pa (")
+    assert lines[-1] == lines[-1][:lines[-1].rindex("(")] + f"({r.times['total']:.1f} s)"
+
+
+def test_the_contact_keeps_clear_of_the_zone_edge():
+    """The rule of the candidate zone: a solve raises ContactZoneError exactly when its last
+    contact node lies more than Z - (fit_nodes + 1/2) h out (room for the gap fit of the
+    radius), checked both ways on zones Z placed 3.0, 3.6 and 4.0 elements beyond the
+    contact of the default zone (the mesh, hence the last node, moves with Z: each
+    outcome is checked against its own node, read from the result or the message)."""
+    import re
+
+    from fem_reference import ContactZoneError
+
+    h = 4e-4
+    r0 = solve(_thick_problem(element_size=h))
+    r0_last = r0.radius[r0.pressure > 0].max()
+    outcomes = set()
+    for extra in (3.0, 3.6, 4.0):
+        Z = r0_last + extra * h
+        try:
+            res = solve(_thick_problem(element_size=h, contact_zone=Z))
+        except ContactZoneError as err:
+            m = re.fullmatch(r"the contact reaches the edge of the candidate zone r = (\S+) m \(contact node at "
+                             r"r = (\S+) m, less than (\S+) m inside\): raise fem.contact_zone or lower the load",
+                             str(err))
+            assert m, str(err)
+            zone, last, margin = (float(g) for g in m.groups())
+            assert zone == pytest.approx(Z, rel=1e-4) and margin == pytest.approx(3.5 * h, rel=1e-3)
+            assert last > Z - 3.5 * h * (1 + 1e-3)
+            outcomes.add("raised")
+        else:
+            assert res.radius[res.pressure > 0].max() <= Z - 3.5 * h
+            outcomes.add("solved")
+    assert outcomes == {"raised", "solved"}
 
 
 @pytest.mark.parametrize("n_c", [1, 64, 65, 130])
