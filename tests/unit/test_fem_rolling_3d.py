@@ -172,10 +172,17 @@ def test_elastic_layer_rolls_without_resistance_like_the_stationary_model():
 
 @pytest.mark.slow
 def test_section_11_energy_balance_and_bem():
-    """The default mesh: energy balance and the BEM's R_r (paper's Table 1, 3.0257 N)
-    to the discretization error measured by benchmarks/fem_rolling_3d.py."""
+    """The paper's section 11 case on the finest mesh of benchmarks/fem_rolling_3d.py
+    (h = 0.5 mm, 172k unknowns, about 3 minutes): the energy balance, and the BEM's
+    R_r = sum F x / R = 3.0257 N (paper's Table 1, reproduced by bem solve) and its
+    horizontal force sum F ds/dx = 3.0761 N, which D/V equals in the continuum. Measured:
+    balance +8e-5, R_r -0.71%, D/V -0.70%, indentation -0.01% (BEM 0.58153 mm); the
+    mesh-convergence study puts the FEM's own error near 0.8% (BENCHMARKS.md)."""
     r = solve(ContactProblem(Layer(H, 1000.0), MAT, Indenter("sphere", R),
-                             Loading(load=P, speed=0.05), FemSettings(model="3d")))
-    assert abs(r.energy_balance) < 0.02  # measured -0.9%
-    assert r.rolling_resistance == pytest.approx(3.0257, rel=0.03)  # measured -1.6%
-    assert r.rolling_resistance_energy == pytest.approx(3.0257, rel=0.03)  # measured -0.8%
+                             Loading(load=P, speed=0.05),
+                             FemSettings(model="3d", element_size=5e-4, grading=0.1,
+                                         far_size=2.5e-3)))
+    assert abs(r.energy_balance) < 3e-3
+    assert r.rolling_resistance == pytest.approx(3.0257, rel=0.015)
+    assert r.rolling_resistance_energy == pytest.approx(3.0761, rel=0.015)
+    assert r.indentation == pytest.approx(0.58153e-3, rel=2e-3)
