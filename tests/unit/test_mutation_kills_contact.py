@@ -262,3 +262,37 @@ def test_iteration_limit(rolling_small):
         solve_normal(rolling_small, s, load=2.0, max_iter=1)
     same = solve_normal(rolling_small, s, load=2.0, max_iter=full.record.iterations)
     np.testing.assert_array_equal(same.force, full.force)
+
+
+def test_edge_nodes_of_two_rows():
+    np.testing.assert_array_equal(edge_nodes((2, 4)), np.ones(8, bool))  # both rows are borders
+
+
+def test_gmres_without_the_circulant_preconditioner(rolling_small):
+    """An operator whose circulant embedding is not invertible gives no preconditioner;
+    plain GMRES then reaches the dense solution (measured 3e-15 of the largest force in
+    331 iterations; 1e-9 allowed, the GMRES tolerance being 1e-11 relative)."""
+    class NoInverse(ComplianceOperator):
+        has_circulant_inverse = False
+
+    op = NoInverse(SMALL, rolling_small.kernel)
+    s, _, _ = _profile(SMALL)
+    dense = solve_normal(rolling_small, s, load=2.0)
+    it = solve_normal(op, s, load=2.0, dense_limit=5)
+    assert it.record.linear_solver == "gmres" and it.record.linear_iterations > 0
+    np.testing.assert_array_equal(it.contact, dense.contact)
+    np.testing.assert_allclose(it.force, dense.force, rtol=0, atol=1e-9 * dense.force.max())
+
+
+def test_single_precision_profile_is_solved_in_double(rolling_small):
+    """A float32 profile gives the float64 answer for the same (float32) values, under
+    load and displacement control (float32 arithmetic in the right side would err by
+    ~1e-8 relative)."""
+    s, _, _ = _profile(SMALL)
+    s32 = s.astype(np.float32)
+    for kw in ({"load": 2.0}, {"indentation": 3e-5}):
+        a = solve_normal(rolling_small, s32, **kw)
+        b = solve_normal(rolling_small, s32.astype(float), **kw)
+        np.testing.assert_array_equal(a.contact, b.contact)
+        np.testing.assert_allclose(a.force, b.force, rtol=0, atol=1e-13 * b.force.max())
+        assert a.indentation == pytest.approx(b.indentation, rel=1e-13)
