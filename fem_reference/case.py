@@ -7,7 +7,8 @@ ignored); this module turns the checked dict into the FEM's own objects: ``[laye
 thickness`` and ``density``, ``[material]`` ``model = "elastic"`` (``shear_modulus``),
 ``"three_parameter"`` (``G0``, ``tau``, ``f``) or ``"prony"`` (``G_inf``, ``G``, ``tau``),
 ``[indenter] shape`` ("sphere" | "paraboloid" | "line") and ``radius``, ``[loading]
-load`` or ``indentation`` and ``speed`` (> 0 only for a line), and the ``[fem]``
+load`` or ``indentation`` and ``speed`` (> 0 for a line, or for a sphere with ``[fem]
+model = "3d"``), and the ``[fem]``
 section. A measured master curve (``model = "table"``) has no time-domain form and is
 refused. SI units.
 """
@@ -33,7 +34,8 @@ def problem_from_dict(data: Dict[str, Any]) -> ContactProblem:
     ------
     InputError
         For anything :func:`casefile.validate` rejects, a master-curve table, a speed
-        given to a stationary (non-line) model or at or above the shear-wave speed, or
+        given to a stationary model (axisymmetric, or a paraboloid) or at or above the
+        shear-wave speed, or
         any value that breaks its rule.
     """
     try:

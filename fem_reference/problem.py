@@ -120,7 +120,9 @@ class FemSettings:
     ----------
     model : {"axisymmetric", "3d", "plane_strain"}, optional
         Axisymmetric (r, z) model, a quarter cylinder in 3D (symmetry planes
-        x = 0 and y = 0), or the plane-strain (x, z) section of a line contact.
+        x = 0 and y = 0), or the plane-strain (x, z) section of a line contact. With
+        ``loading.speed`` > 0, "3d" is steady rolling of a sphere on the half box
+        y >= 0 (:mod:`.rolling3d_solve`).
         Default: "plane_strain" for a line indenter, "axisymmetric" otherwise.
     element_size : float, optional
         Element size h_c (m) in the candidate contact zone. Default: axisymmetric
@@ -133,15 +135,18 @@ class FemSettings:
     domain_radius : float, optional
         Lateral extent (m) of the truncated layer (traction-free outer side).
         Default contact_zone + 8 H. Not used in plane strain (see upstream and
-        downstream).
+        downstream). 3D rolling: the half box's extent in y, default contact_zone +
+        max(6 H, 4 a_est).
     upstream : float, optional
-        Plane strain: length (m) of the layer ahead of the indenter (x > 0), where the
+        Rolling: length (m) of the layer ahead of the indenter (x > 0), where the
         material enters undeformed and relaxed (the inflow). Default contact_zone +
-        max(8 H, 6 a_est).
+        max(8 H, 6 a_est) in plane strain, contact_zone + max(6 H, 4 a_est) in 3D.
     downstream : float, optional
-        Plane strain: length (m) of the layer behind the indenter (x < 0), where the
-        material leaves. Default contact_zone + max(8 H, 6 a_est, 8 V t_r), t_r the
-        longest creep (retardation) time: the material recovers before it leaves.
+        Rolling: length (m) of the layer behind the indenter (x < 0), where the
+        material leaves. Default contact_zone + max(8 H, 6 a_est, 8 V t_r) in plane
+        strain (3D: 6 H, 4 a_est, 6 V t_r), t_r the longest creep (retardation) time:
+        the material recovers before it leaves. The 3D mesh is mirror-symmetric about
+        x = 0: its upstream and downstream lengths are both the larger one.
     far_size : float, optional
         Largest element size (m). Default H / 2 (axisymmetric), H (3D), at most
         domain_radius / 4.
