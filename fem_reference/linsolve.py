@@ -195,8 +195,8 @@ class PardisoSolver:
 
     Pardiso's nested-dissection ordering and supernodal, multithreaded factorization
     fill far less than SuperLU's COLAMD on 3D Taylor-Hood systems (BENCHMARKS.md,
-    "fem_reference steady rolling, 3D"). pypardiso is optional (``pip install
-    'viscolayer[pardiso]'``); :func:`sparse_lu` falls back to SuperLU without it.
+    "fem_reference steady rolling, 3D"). pypardiso is a dependency on x86_64 (MKL
+    exists only there); :func:`sparse_lu` falls back to SuperLU without it.
     ``memory`` is Pardiso's own peak memory report (bytes).
 
     ``selected``: indices of the only unknowns where the right-hand sides are nonzero
@@ -306,8 +306,8 @@ def sparse_lu(S: sp.spmatrix, scale: np.ndarray, prefer: str = "auto",
             if prefer == "pardiso":
                 from .errors import MissingDependencyError
                 raise MissingDependencyError(
-                    "the Pardiso solver needs pypardiso: pip install 'viscolayer[pardiso]' "
-                    "(or pip install pypardiso), or use the SuperLU fallback") from None
+                    "the Pardiso solver needs pypardiso (a dependency on x86_64; pip install pypardiso), "
+                    "or use the SuperLU fallback") from None
         else:
             return PardisoSolver(S, scale)
     return DirectSolver(S, scale, orderings=orderings)

@@ -42,6 +42,8 @@ __all__ = ["solve_rolling_3d", "dissipation"]
 BLOCK = 256
 #: linear solver: "auto" (Pardiso if installed, else SuperLU), "pardiso" or "superlu"
 LINEAR_SOLVER = "auto"
+#: the most unknowns a 3D rolling solve takes without Pardiso (SuperLU: 3.2 GB at 51k, 110 s)
+SUPERLU_LIMIT = 100_000
 #: defect correction of the partial-solve compliance: steps at most, and the relative
 #: change of the weighted deflection at which it stops (the first defect measured
 #: 2e-6 .. 3e-5)
@@ -117,6 +119,12 @@ def solve_rolling_3d(problem: ContactProblem,
     say(f"{system.mesh.t.shape[1]} tetrahedra, {system.n_unknowns} unknowns, "
         f"{len(system.m)} contact candidate nodes")
     partial = LINEAR_SOLVER != "superlu" and pardiso_available()
+    if not partial and system.n_unknowns > SUPERLU_LIMIT:
+        raise LinearSolverError(
+            f"{system.n_unknowns} unknowns are too many for SuperLU in 3D (its fill measured 104M nonzeros, "
+            f"3.2 GB, at 51k unknowns and grows faster than the unknowns): install MKL Pardiso "
+            f"(pip install pypardiso; x86_64 only) or give a coarser fem.element_size, grading or far_size "
+            f"(at most {SUPERLU_LIMIT} unknowns without Pardiso)")
     if partial:  # Pardiso's partial solve for W, then full solves on the same factors
         solver = PardisoSolver(system.S, system.scale, selected=np.unique(system.C.indices))
     else:

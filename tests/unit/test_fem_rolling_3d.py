@@ -203,3 +203,16 @@ def test_section_11_energy_balance_and_bem():
     assert r.rolling_resistance == pytest.approx(3.0257, rel=0.015)
     assert r.rolling_resistance_energy == pytest.approx(3.0761, rel=0.015)
     assert r.indentation == pytest.approx(0.58153e-3, rel=2e-3)
+
+
+def test_without_pardiso_a_large_3d_rolling_system_is_refused_by_name(monkeypatch):
+    """Without Pardiso, SuperLU's 3D fill (3.2 GB at 51k unknowns) would exhaust memory on
+    the case's finest level: a system above SUPERLU_LIMIT unknowns is refused before the
+    factorization, with what to install or change."""
+    from fem_reference import rolling3d_solve
+    from fem_reference.errors import LinearSolverError
+
+    monkeypatch.setattr(rolling3d_solve, "LINEAR_SOLVER", "superlu")
+    monkeypatch.setattr(rolling3d_solve, "SUPERLU_LIMIT", 1000)
+    with pytest.raises(LinearSolverError, match=r"too many for SuperLU in 3D.*pip install pypardiso.*element_size"):
+        solve(_problem(speed=0.01))
