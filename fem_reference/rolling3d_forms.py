@@ -23,8 +23,10 @@ Extra form parameters: ``G`` (Pa), ``rho_v2`` = rho V^2 (Pa), ``ell`` = l_i (m),
 
 from __future__ import annotations
 
-from skfem import BilinearForm, Functional, LinearForm
+from skfem import BilinearForm, Functional
 from skfem.helpers import ddot, sym_grad
+
+from .rolling_forms import area, branch_advection, pressure_mass, weighted  # the same in 3D
 
 __all__ = ["glassy_stiffness", "divergence", "branch_stress", "branch_advection",
            "branch_source", "coupling", "area", "weighted", "pressure_mass", "dashpot_power",
@@ -79,12 +81,6 @@ def branch_stress(a, v, w):
 
 
 @BilinearForm
-def branch_advection(a, phi, w):
-    """2 G (-l da/dx + a) (phi - delta l dphi/dx): the SUPG advection-relaxation operator."""
-    return 2.0 * w.G * (-w.ell * a.grad[0] + a) * (phi - w.delta * w.ell * phi.grad[0])
-
-
-@BilinearForm
 def branch_source(u, phi, w):
     """-2 G E_k(u) (phi - delta l dphi/dx): the strain that drives component k."""
     return -2.0 * w.G * deviator(u, w.comp) * (phi - w.delta * w.ell * phi.grad[0])
@@ -94,23 +90,6 @@ def branch_source(u, phi, w):
 def coupling(u, mu, w):
     """mu u_z on the top surface."""
     return mu * u[2]
-
-
-@LinearForm
-def area(mu, w):
-    """mu (m^2)."""
-    return mu
-
-
-@LinearForm
-def weighted(mu, w):
-    """mu f with f = ``w.f`` at the quadrature points."""
-    return mu * w.f
-
-
-@BilinearForm
-def pressure_mass(p, q, w):
-    return p * q
 
 
 @Functional

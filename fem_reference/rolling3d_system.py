@@ -19,8 +19,6 @@ load.
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass
-from typing import List
 
 import numpy as np
 import scipy.sparse as sp
@@ -31,6 +29,7 @@ from .materials import PronyMaterial, as_prony
 from .mesh_box import half_box_mesh
 from .problem import ContactProblem
 from .rolling3d_discretization import BoxDiscretization
+from .rolling_system import RollingSystem, element_hx
 
 __all__ = ["BoxSystem", "build_box_system", "sphere_profile", "sphere_slope"]
 
@@ -52,8 +51,7 @@ def sphere_slope(x, y, R):
     return x / np.sqrt(R * R - x * x - np.asarray(y, float) ** 2)
 
 
-@dataclass
-class BoxSystem:
+class BoxSystem(RollingSystem):
     """Assembled discrete half layer (see :class:`~.rolling_system.RollingSystem`).
 
     Attributes
@@ -78,43 +76,7 @@ class BoxSystem:
         Diagonal scale of the free unknowns for the direct solver.
     """
 
-    mesh: object
-    ubasis: object
-    pbasis: object
-    wbasis: object
-    S: sp.spmatrix
-    free: np.ndarray
-    offsets: List[int]
-    C: sp.spmatrix
-    m: np.ndarray
-    q: np.ndarray
-    mx: np.ndarray
-    ms: np.ndarray
-    nodes: np.ndarray
-    branches: list
-    scale: np.ndarray
-    mesh_time: float
-    assembly_time: float
-
-    @property
-    def n_unknowns(self) -> int:
-        return len(self.free)
-
-    def split(self, x_free: np.ndarray):
-        """Full fields from a free-unknown vector: u (m), p (Pa) and, per branch, the
-        list of its five strain components."""
-        full = np.zeros(self.offsets[-1])
-        full[self.free] = x_free
-        o = self.offsets
-        u, p = full[o[0]:o[1]], full[o[1]:o[2]]
-        w = [[full[o[2 + NC * b + k]:o[3 + NC * b + k]] for k in range(NC)]
-             for b in range(len(self.branches))]
-        return u, p, w
-
-
-def _element_hx(mesh) -> np.ndarray:
-    xs = mesh.p[0, mesh.t]
-    return xs.max(axis=0) - xs.min(axis=0)
+    COMPONENTS = NC
 
 
 def build_box_system(problem: ContactProblem, disc: BoxDiscretization) -> BoxSystem:
@@ -140,7 +102,7 @@ def build_box_system(problem: ContactProblem, disc: BoxDiscretization) -> BoxSys
     nblk = 2 + NC * nb
     blocks = [[None] * nblk for _ in range(nblk)]
     blocks[0][0], blocks[0][1], blocks[1][0] = A, -B.T, -B
-    hx = _element_hx(mesh)
+    hx = element_hx(mesh)
     nq = wb.X.shape[1]
     for b, (Gi, ti) in enumerate(branches):
         ell = V * ti

@@ -78,7 +78,7 @@ def coupling(u, mu, w):
 
 @LinearForm
 def area(mu, w):
-    """mu (m per unit length)."""
+    """mu (m per unit length in plane strain, m^2 on a 3D surface)."""
     return mu
 
 

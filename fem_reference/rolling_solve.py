@@ -17,7 +17,6 @@ import time
 from typing import Callable, Optional
 
 import numpy as np
-from skfem import Functional
 
 from . import rolling_forms as rf
 from .contact import solve_contact

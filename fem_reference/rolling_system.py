@@ -93,18 +93,23 @@ class RollingSystem:
     def n_unknowns(self) -> int:
         return len(self.free)
 
+    #: viscous-strain components per Maxwell branch (a and c in plane strain)
+    COMPONENTS = 2
+
     def split(self, x_free: np.ndarray):
-        """Full fields from a free-unknown vector: u (m), p (Pa) and [(a_i, c_i)]."""
+        """Full fields from a free-unknown vector: u (m), p (Pa) and, per branch, the
+        tuple of its strain components ((a_i, c_i) in plane strain)."""
         full = np.zeros(self.offsets[-1])
         full[self.free] = x_free
-        o = self.offsets
+        o, nc = self.offsets, self.COMPONENTS
         u, p = full[o[0]:o[1]], full[o[1]:o[2]]
-        w = [(full[o[2 + 2 * k]:o[3 + 2 * k]], full[o[3 + 2 * k]:o[4 + 2 * k]])
-             for k in range(len(self.branches))]
+        w = [tuple(full[o[2 + nc * b + k]:o[3 + nc * b + k]] for k in range(nc))
+             for b in range(len(self.branches))]
         return u, p, w
 
 
-def _element_hx(mesh) -> np.ndarray:
+def element_hx(mesh) -> np.ndarray:
+    """Extent (m) of each element along x (the SUPG length scale)."""
     xs = mesh.p[0, mesh.t]
     return xs.max(axis=0) - xs.min(axis=0)
 
@@ -131,7 +136,7 @@ def build_rolling_system(problem: ContactProblem, disc: PlaneDiscretization) -> 
     nb = len(branches)
     blocks = [[None] * (2 + 2 * nb) for _ in range(2 + 2 * nb)]
     blocks[0][0], blocks[0][1], blocks[1][0] = A, -B.T, -B
-    hx = _element_hx(mesh)
+    hx = element_hx(mesh)
     nq = wb.X.shape[1]
     for k, (Gi, ti) in enumerate(branches):
         ell = V * ti
