@@ -158,8 +158,8 @@ def tables(result: CaseResult) -> list[Table]:
             c = result.convergence.get((method, q))
             if c is None or q != "rolling_resistance":
                 continue
-            note = f"order {c.order:.2f}" + ("" if c.asymptotic else " (not asymptotic: finest kept)")
-            rows.append((method, "Richardson", fmt(c.extrapolated), note, *[""] * (len(_COLUMNS) - 1)))
+            note = f"Richardson, order {c.order:.2f}" + ("" if c.asymptotic else " (not asymptotic: finest kept)")
+            rows.append((method, note, fmt(c.extrapolated), *[""] * len(_COLUMNS)))
     head = ("method", "h or a (mm)", *(label for _, label, _ in _COLUMNS), "time (s)")
     return [Table("Runs (scalars on the whole contact; edges on y = 0)", head, tuple(rows))] if rows else []
 
