@@ -221,14 +221,15 @@ SCHEMA: tuple = (
                             "min(b_est/30, H/8) (b_est: the relaxed half-width)"),
             Key("contact_zone", "number", "m", "radius (plane strain: half-width) of the refined candidate "
                 "contact zone", ("fem",), rule=">0", default_doc="1.4 a_est; plane_strain 1.5 b_est"),
-            Key("domain_radius", "number", "m", "lateral extent of the truncated layer (not plane_strain)",
-                ("fem",), rule=">0", default_doc="contact_zone + 8 H"),
-            Key("upstream", "number", "m", "plane_strain: length ahead of the indenter (+x), where the material "
-                "enters undeformed and relaxed; at least contact_zone + 2 max(H, b_est)", ("fem",), rule=">0",
-                default_doc="contact_zone + max(8 H, 6 b_est)"),
-            Key("downstream", "number", "m", "plane_strain: length behind the indenter (-x), where the material "
+            Key("domain_radius", "number", "m", "lateral extent of the truncated layer (3D rolling: the half box's extent in y; not plane_strain)",
+                ("fem",), rule=">0", default_doc="contact_zone + 8 H; 3D rolling contact_zone + max(6 H, 4 a_est)"),
+            Key("upstream", "number", "m", "rolling (plane strain, 3D): length ahead of the indenter (+x), where the "
+                "material enters undeformed and relaxed; at least contact_zone + 2 max(H, b_est); the 3D half "
+                "box extends max(upstream, downstream) both ways", ("fem",), rule=">0",
+                default_doc="contact_zone + max(8 H, 6 b_est); 3D contact_zone + max(6 H, 4 a_est)"),
+            Key("downstream", "number", "m", "rolling (plane strain, 3D): length behind the indenter (-x), where the material "
                 "leaves; at least contact_zone + 2 max(H, b_est) + 3 V t_r (t_r the longest creep time)",
-                ("fem",), rule=">0", default_doc="contact_zone + max(8 H, 6 b_est, 8 V t_r)"),
+                ("fem",), rule=">0", default_doc="contact_zone + max(8 H, 6 b_est, 8 V t_r); 3D contact_zone + max(6 H, 4 a_est, 6 V t_r)"),
             Key("far_size", "number", "m", "largest element size", ("fem",), rule=">0",
                 default_doc="H/2 axisymmetric and plane_strain (along x behind the indenter at least V t_r/4), "
                             "H in 3d"),
