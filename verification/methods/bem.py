@@ -67,12 +67,18 @@ def run_line(problem_cfg: dict, settings: dict, spacing: float) -> Run:
                                             "leading_edge", "trailing_edge", "peak_pressure", "load")}
     speed = problem.loading.speed
     if speed > 0:
-        x = np.asarray(res.x)
-        step = 1e-3 * spacing
-        slope = (problem.indenter.profile(x + step) - problem.indenter.profile(x - step)) / (2 * step)
-        scalars["rolling_resistance_slope"] = float(np.sum(np.asarray(res.force).ravel() * slope))
+        scalars["rolling_resistance_slope"] = _work_rate(problem.indenter.profile, res.force, np.asarray(res.x),
+                                                         spacing)
         scalars["dissipation"] = res.rolling_resistance_energy * speed
     return Run("bem", spacing, scalars, np.asarray(res.x), np.asarray(res.pressure_profile), seconds)
+
+
+def _work_rate(profile, force, x, spacing: float) -> float:
+    """``sum F ds/dx``: the pressure's work rate over V (N, or N/m in plane strain), the
+    indenter's slope by a central difference of its ``profile(x)`` (m) at the nodes."""
+    step = 1e-3 * spacing
+    slope = (profile(x + step) - profile(x - step)) / (2 * step)
+    return float(np.sum(np.asarray(force).reshape(np.shape(slope)) * slope))
 
 
 def run_rolling(problem_cfg: dict, settings: dict, spacing: float) -> Run:
@@ -92,8 +98,6 @@ def run_rolling(problem_cfg: dict, settings: dict, spacing: float) -> Run:
     trailing, leading = edges_along(g.x, g.spacing_x, res.force[row], res.gap[row])
     zero = np.zeros_like(res.force)
     X, Y = g.coordinates()
-    step = 1e-3 * g.spacing_x
-    slope = (problem.indenter.profile(X + step, Y) - problem.indenter.profile(X - step, Y)) / (2 * step)
     scalars = {
         "rolling_resistance": res.rolling_resistance,
         "indentation": res.indentation,
@@ -102,7 +106,7 @@ def run_rolling(problem_cfg: dict, settings: dict, spacing: float) -> Run:
         "trailing_edge": trailing,
         "leading_edge": leading,
         "pressure_centroid_x": res.pressure_centroid_x,
-        "rolling_resistance_slope": float(np.sum(res.force * slope)),
+        "rolling_resistance_slope": _work_rate(lambda x: problem.indenter.profile(x, Y), res.force, X, spacing),
         "dissipation": viscous_dissipation(g, problem.layer, problem.loading.speed, -res.force, zero, zero),
     }
     return Run("bem", spacing, scalars, np.asarray(g.x), res.pressure[row], seconds, g, res.pressure)

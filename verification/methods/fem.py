@@ -64,21 +64,29 @@ def run(problem_cfg: dict, settings: dict, size: float) -> Run:
     return Run("fem", size, scalars, np.asarray(res.radius), np.asarray(res.pressure), seconds)
 
 
-def run_line(problem_cfg: dict, settings: dict, size: float) -> Run:
-    """The plane-strain steady-rolling FEM (a line contact, per unit length) with element
-    size ``size`` (m) at the contact; ``Run.r`` holds the signed ``x`` of the pressure
-    samples (m, ``x > 0`` ahead), scalars per unit length (N/m, W/m)."""
+def _moving(problem_cfg: dict, fem: dict):
+    """(result, seconds) of the FEM's steady-rolling solve with ``[fem]`` = ``fem``, and
+    its scalars (N or N/m, m, Pa, W or W/m) with the pressure's work rate over V."""
     import fem_reference as fr
     from fem_reference.case import problem_from_dict
 
-    problem = problem_from_dict({**problem_cfg, "fem": {**settings, "element_size": size}})
+    problem = problem_from_dict({**problem_cfg, "fem": fem})
     t = time.perf_counter()
     res = fr.solve(problem)
     seconds = time.perf_counter() - t
     scalars = {q: float(getattr(res, q)) for q in ("rolling_resistance", "indentation", "leading_edge",
                                                    "trailing_edge", "peak_pressure", "load", "dissipation")}
-    if res.speed > 0:  # the pressure's work rate over V, int p s'(x) dx (N/m)
+    scalars["pressure_centroid_x"] = float(res.pressure_centroid)
+    if res.speed > 0:  # the pressure's work rate over V, int p ds/dx
         scalars["rolling_resistance_slope"] = float(res.pressure_power) / res.speed
+    return res, seconds, scalars
+
+
+def run_line(problem_cfg: dict, settings: dict, size: float) -> Run:
+    """The plane-strain steady-rolling FEM (a line contact, per unit length) with element
+    size ``size`` (m) at the contact; ``Run.r`` holds the signed ``x`` of the pressure
+    samples (m, ``x > 0`` ahead), scalars per unit length (N/m, W/m)."""
+    res, seconds, scalars = _moving(problem_cfg, {**settings, "element_size": size})
     return Run("fem", size, scalars, np.asarray(res.pressure_x), np.asarray(res.pressure), seconds)
 
 
@@ -88,17 +96,7 @@ def run_rolling(problem_cfg: dict, settings: dict, size: float) -> Run:
     multiplier nodes on ``y = 0`` and ``Run.pressure`` their pressure (Pa); the scalars
     are totals over the whole layer (N, m, W), with ``rolling_resistance_slope`` the
     pressure's work rate over V (N)."""
-    import fem_reference as fr
-    from fem_reference.case import problem_from_dict
-
-    problem = problem_from_dict({**problem_cfg, "fem": {"model": "3d", **settings, "element_size": size}})
-    t = time.perf_counter()
-    res = fr.solve(problem)
-    seconds = time.perf_counter() - t
-    scalars = {q: float(getattr(res, q)) for q in ("rolling_resistance", "indentation", "leading_edge",
-                                                   "trailing_edge", "peak_pressure", "load", "dissipation")}
-    scalars["pressure_centroid_x"] = float(res.pressure_centroid)
-    scalars["rolling_resistance_slope"] = float(res.pressure_power) / res.speed
+    res, seconds, scalars = _moving(problem_cfg, {"model": "3d", **settings, "element_size": size})
     return Run("fem", size, scalars, np.asarray(res.pressure_x), np.asarray(res.pressure), seconds)
 
 
