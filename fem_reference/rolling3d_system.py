@@ -22,14 +22,14 @@ import time
 
 import numpy as np
 import scipy.sparse as sp
-from skfem import Basis, ElementTetP1, ElementTetP2, ElementVector, FacetBasis, asm, bmat
+from skfem import Basis, ElementTetP1, ElementTetP2, ElementVector, asm, bmat
 
 from . import rolling3d_forms as rf
 from .materials import PronyMaterial, as_prony
 from .mesh_box import half_box_mesh
 from .problem import ContactProblem
 from .rolling3d_discretization import BoxDiscretization
-from .rolling_system import RollingSystem, element_hx
+from .rolling_system import RollingSystem, diagonal_scale, element_hx, multiplier_coupling, restrict
 
 __all__ = ["BoxSystem", "build_box_system", "sphere_profile", "sphere_slope"]
 
@@ -130,18 +130,8 @@ def build_box_system(problem: ContactProblem, disc: BoxDiscretization) -> BoxSys
             if k in ODD:
                 fixed.append(o + sym_w)
     fixed = np.unique(np.concatenate(fixed))
-    keep = np.ones(offsets[-1], bool)
-    keep[fixed] = False
-    free = np.flatnonzero(keep)
-    S = S_full[free][:, free].tocsr()
-
-    zone = mesh.boundaries["zone"]
-    fbu = FacetBasis(mesh, ue, facets=zone, intorder=6)
-    fbl = FacetBasis(mesh, ElementTetP1(), facets=zone, intorder=6)
-    lam_nodes = np.unique(mesh.facets[:, zone])
-    Cu = asm(rf.coupling, fbu, fbl).tocsr()[lam_nodes]
-    Cfull = sp.hstack([Cu, sp.csr_matrix((len(lam_nodes), offsets[-1] - ub.N))]).tocsr()
-    C = Cfull[:, free].tocsr()
+    S, free = restrict(S_full, fixed, offsets[-1])
+    C, fbl, lam_nodes = multiplier_coupling(mesh, ue, ElementTetP1(), rf.coupling, free, offsets[-1], ub.N)
     xq = np.asarray(fbl.global_coordinates())
     R = problem.indenter.radius
     m = asm(rf.area, fbl)[lam_nodes]
@@ -150,11 +140,7 @@ def build_box_system(problem: ContactProblem, disc: BoxDiscretization) -> BoxSys
     ms = asm(rf.weighted, fbl, f=sphere_slope(xq[0], xq[1], R))[lam_nodes]
     nodes = mesh.p[:2, lam_nodes].T
 
-    Mp = asm(rf.pressure_mass, pb)
-    diag = np.abs(S.diagonal())
-    n_u_free = int(np.sum(free < offsets[1]))
-    p_free = free[(free >= offsets[1]) & (free < offsets[2])] - offsets[1]
-    diag[n_u_free:n_u_free + len(p_free)] = np.asarray(Mp.sum(axis=1)).ravel()[p_free] / (2.0 * Gg)
+    diag = diagonal_scale(S, free, offsets, pb, Gg)
     t2 = time.perf_counter()
     return BoxSystem(mesh=mesh, ubasis=ub, pbasis=pb, wbasis=wb, S=S, free=free, offsets=offsets,
                      C=C, m=np.asarray(m), q=np.asarray(q), mx=np.asarray(mx), ms=np.asarray(ms),

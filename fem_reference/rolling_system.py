@@ -26,7 +26,8 @@ from .mesh_plane import plane_mesh
 from .plane_discretization import PlaneDiscretization
 from .problem import ContactProblem
 
-__all__ = ["RollingSystem", "build_rolling_system", "profile", "slope"]
+__all__ = ["RollingSystem", "build_rolling_system", "profile", "slope", "element_hx", "restrict",
+           "multiplier_coupling", "diagonal_scale"]
 
 INTORDER = 4
 #: polynomial order of the continuous viscous-strain fields (1 or 2)
@@ -114,6 +115,38 @@ def element_hx(mesh) -> np.ndarray:
     return xs.max(axis=0) - xs.min(axis=0)
 
 
+def restrict(S_full: sp.spmatrix, fixed: np.ndarray, n_total: int):
+    """(S, free): the system on the unknowns not in ``fixed``, and their indices."""
+    keep = np.ones(n_total, bool)
+    keep[fixed] = False
+    free = np.flatnonzero(keep)
+    return S_full[free][:, free].tocsr(), free
+
+
+def multiplier_coupling(mesh, ue, lam_element, coupling, free: np.ndarray, n_total: int, n_u: int):
+    """(C, fbl, lam_nodes): the mortar coupling ``coupling`` of the P1 multiplier (element
+    ``lam_element``) on the ``zone`` boundary with the free unknowns, its facet basis and
+    its nodes (mesh vertices)."""
+    zone = mesh.boundaries["zone"]
+    fbu = FacetBasis(mesh, ue, facets=zone, intorder=6)
+    fbl = FacetBasis(mesh, lam_element, facets=zone, intorder=6)
+    lam_nodes = np.unique(mesh.facets[:, zone])
+    Cu = asm(coupling, fbu, fbl).tocsr()[lam_nodes]
+    Cfull = sp.hstack([Cu, sp.csr_matrix((len(lam_nodes), n_total - n_u))]).tocsr()
+    return Cfull[:, free].tocsr(), fbl, lam_nodes
+
+
+def diagonal_scale(S: sp.spmatrix, free: np.ndarray, offsets, pbasis, G: float) -> np.ndarray:
+    """Diagonal scale of the free unknowns for the direct solver: |S_ii|, with the
+    pressure rows' lumped mass / (2 G) in place of their zero diagonal."""
+    Mp = asm(rf.pressure_mass, pbasis)
+    diag = np.abs(S.diagonal())
+    n_u_free = int(np.sum(free < offsets[1]))
+    p_free = free[(free >= offsets[1]) & (free < offsets[2])] - offsets[1]
+    diag[n_u_free:n_u_free + len(p_free)] = np.asarray(Mp.sum(axis=1)).ravel()[p_free] / (2.0 * G)
+    return diag
+
+
 def build_rolling_system(problem: ContactProblem, disc: PlaneDiscretization) -> RollingSystem:
     """Mesh and assemble the plane-strain rolling layer of ``problem`` (module docstring)."""
     t0 = time.perf_counter()
@@ -162,18 +195,8 @@ def build_rolling_system(problem: ContactProblem, disc: PlaneDiscretization) -> 
     for j in range(2 * nb):
         fixed.append(offsets[2 + j] + inflow_w)
     fixed = np.concatenate(fixed)
-    keep = np.ones(offsets[-1], bool)
-    keep[fixed] = False
-    free = np.flatnonzero(keep)
-    S = S_full[free][:, free].tocsr()
-
-    zone = mesh.boundaries["zone"]
-    fbu = FacetBasis(mesh, ue, facets=zone, intorder=6)
-    fbl = FacetBasis(mesh, ElementTriP1(), facets=zone, intorder=6)
-    lam_nodes = np.unique(mesh.facets[:, zone])
-    Cu = asm(rf.coupling, fbu, fbl).tocsr()[lam_nodes]
-    Cfull = sp.hstack([Cu, sp.csr_matrix((len(lam_nodes), offsets[-1] - ub.N))]).tocsr()
-    C = Cfull[:, free].tocsr()
+    S, free = restrict(S_full, fixed, offsets[-1])
+    C, fbl, lam_nodes = multiplier_coupling(mesh, ue, ElementTriP1(), rf.coupling, free, offsets[-1], ub.N)
     xq = np.asarray(fbl.global_coordinates())[0]
     R = problem.indenter.radius
     m = asm(rf.area, fbl)[lam_nodes]
@@ -184,11 +207,7 @@ def build_rolling_system(problem: ContactProblem, disc: PlaneDiscretization) -> 
     order = np.argsort(x_nodes, kind="stable")
     C, m, q, mx, ms, x_nodes = C[order], m[order], q[order], mx[order], ms[order], x_nodes[order]
 
-    Mp = asm(rf.pressure_mass, pb)
-    diag = np.abs(S.diagonal())
-    n_u_free = int(np.sum(free < offsets[1]))
-    p_free = free[(free >= offsets[1]) & (free < offsets[2])] - offsets[1]
-    diag[n_u_free:n_u_free + len(p_free)] = np.asarray(Mp.sum(axis=1)).ravel()[p_free] / (2.0 * Gg)
+    diag = diagonal_scale(S, free, offsets, pb, Gg)
     t2 = time.perf_counter()
     return RollingSystem(mesh=mesh, ubasis=ub, pbasis=pb, wbasis=wb, S=S, free=free, offsets=offsets,
                          C=C, m=np.asarray(m), q=np.asarray(q), mx=np.asarray(mx), ms=np.asarray(ms),
