@@ -31,7 +31,7 @@ from typing import Callable, Optional
 
 import numpy as np
 
-from .errors import ContactNotConvergedError
+from .errors import ContactNotConvergedError, InputError
 
 __all__ = ["ContactSolution", "solve_contact"]
 
@@ -133,6 +133,22 @@ def _primal(W, m, q, load, indentation, work, tol_g, max_iterations, progress):
                                    f"{max_iterations} iterations (fem.max_iterations)")
 
 
+def _check_reaches_a_node(m, q, indentation):
+    """Raise if the rigid indentation d (m) closes no node's weighted gap q_j / m_j (m).
+
+    With g_j(lam = 0) = q_j - d m_j >= 0 for every j, lam = 0 satisfies all the contact
+    conditions, and the solution is unique: the indenter carries no load."""
+    gaps = q / m
+    j = int(np.argmin(gaps))
+    if indentation <= gaps[j]:
+        raise InputError(
+            f"loading.indentation = {indentation:.6g} m reaches no node of the candidate zone: "
+            f"to touch the nearest one the indenter would need to close {gaps[j]:.5e} m (the gap "
+            f"between the undeformed surface and the indenter, averaged over that node's hat "
+            f"function), so the load would be 0; raise loading.indentation above {gaps[j]:.5e} m, "
+            "or refine fem.element_size (that gap shrinks as h^2)")
+
+
 def solve_contact(W: np.ndarray, m: np.ndarray, q: np.ndarray, *,
                   load: Optional[float] = None, indentation: Optional[float] = None,
                   initial_active: Optional[np.ndarray] = None, max_iterations: int = 100,
@@ -159,11 +175,16 @@ def solve_contact(W: np.ndarray, m: np.ndarray, q: np.ndarray, *,
 
     Raises
     ------
+    InputError
+        Under displacement control, if the indentation closes the gap of no node:
+        d <= min_j q_j / m_j makes lam = 0 the (unique) solution, a contact of no load.
     ContactNotConvergedError
         If an iteration limit is reached.
     """
     if (load is None) == (indentation is None):
         raise ValueError("solve_contact needs exactly one of load and indentation")
+    if indentation is not None:
+        _check_reaches_a_node(m, q, indentation)
     n = len(q)
     c = 1.0 / np.diag(W)
     tol_g = 1e-12 * np.max(np.abs(q)) + 1e-300

@@ -78,3 +78,37 @@ def test_cli_json_plot_vtu(tmp_path, capsys):
     assert abs(uz_top + data["indentation"]) < 1e-3 * data["indentation"]
     assert main(["solve", str(case), "--set", "loading.speed=0.1"]) == 2
     assert "speed must be 0 m/s: fem-reference solves stationary contact only" in capsys.readouterr().err
+
+
+def test_indentation_that_reaches_no_node_is_an_error_naming_the_gap():
+    """Displacement control below the first multiplier node: the rigid indenter touches
+    no node, the contact problem's unique solution is lam = 0 (load 0), which used to be
+    returned as a result. It raises, naming the indentation and the gap to close.
+
+    The gap named is the smallest weighted gap q_j / m_j of a node; at the axis node of
+    the axisymmetric zone (hat function 1 - r / r1 on [0, r1], weight r dr, paraboloid
+    s = r^2 / (2 R)) it is (r1^4 / (40 R)) / (r1^2 / 6) = 3 r1^2 / (20 R) exactly (the
+    facet quadrature, order 6, is exact for this degree-4 integrand). Just above it the
+    solve carries a load, just below it raises: the named value is the threshold."""
+    import re
+
+    from fem_reference import InputError
+
+    R = 0.02
+
+    def by_indentation(d):
+        return solve(ContactProblem(Layer(5e-3), ElasticMaterial(3e6), Indenter("paraboloid", R),
+                                    Loading(indentation=d),
+                                    FemSettings(element_size=4e-4, contact_zone=3e-3)))
+
+    with pytest.raises(InputError, match=r"loading.indentation = 1e-09 m reaches no node") as info:
+        by_indentation(1e-9)
+    message = str(info.value)
+    assert "raise loading.indentation" in message and "fem.element_size" in message
+    gap = float(re.search(r"would need to close ([0-9.e+-]+) m", message).group(1))
+    with pytest.raises(InputError, match="reaches no node"):
+        by_indentation(0.99 * gap)
+    touching = by_indentation(1.02 * gap)
+    assert touching.load > 0
+    r1 = touching.radius[1]  # the first node off the axis (the radii are sorted)
+    assert gap == pytest.approx(3.0 * r1 ** 2 / (20.0 * R), rel=1e-4)  # 5 digits printed
