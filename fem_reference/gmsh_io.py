@@ -21,7 +21,7 @@ from .errors import MeshError
 
 gmsh = import_gmsh()  # one clear ImportError if gmsh's system libraries are missing
 
-__all__ = ["mesh_with_gmsh"]
+__all__ = ["mesh_with_gmsh", "require_boundaries"]
 
 
 def _drop_orphans(m: meshio.Mesh, volume_type: str) -> meshio.Mesh:
@@ -76,3 +76,22 @@ def mesh_with_gmsh(build: Callable[[], None], volume_type: str, dim: int):
         if len(facets) == 0:
             raise MeshError(f"the named boundary {name!r} of the mesh is empty")
     return mesh
+
+
+def require_boundaries(mesh, what: str, faces: dict) -> None:
+    """Raise :class:`MeshError` if a named boundary of ``mesh`` is missing or empty.
+
+    Parameters
+    ----------
+    mesh : skfem Mesh
+    what : str
+        The mesh's name in the message ("half-box", ...).
+    faces : dict
+        Boundary name -> (where it lies, the settings that shape it), both text.
+    """
+    for name, (where, settings) in faces.items():
+        if len(mesh.boundaries.get(name, ())) == 0:
+            raise MeshError(
+                f"the {what} mesh has no facet on the boundary {name!r} ({where}): its face was "
+                f"lost when the model's faces were sorted; the lengths that shape it are {settings}: "
+                "change them (keep the candidate zone several elements inside the domain)")

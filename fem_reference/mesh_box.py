@@ -23,7 +23,7 @@ from skfem import MeshTet
 
 from ._deps import import_gmsh
 from .errors import MeshError
-from .gmsh_io import mesh_with_gmsh
+from .gmsh_io import mesh_with_gmsh, require_boundaries
 from .mesh_axisym import size_field
 
 gmsh = import_gmsh()  # one clear ImportError if gmsh's system libraries are missing
@@ -99,7 +99,12 @@ def half_box_mesh(thickness: float, zone: float, length: float, lateral: float, 
         "zone": lambda x: (np.abs(x[2] - H) < tol) & (np.hypot(x[0], x[1]) < Z),
         "free": lambda x: (np.abs(x[2] - H) < tol) & (np.hypot(x[0], x[1]) >= Z),
     })
-    for name in NAMES:
-        if len(mesh.boundaries.get(name, ())) == 0:
-            raise MeshError(f"the half-box mesh has no facet on the boundary {name!r}")
+    box = f"layer.thickness = {H:.6g} m, fem.upstream = fem.downstream = {L:.6g} m, " \
+          f"fem.domain_radius = {lateral:.6g} m"
+    zone_set = f"fem.contact_zone = {Z:.6g} m"
+    require_boundaries(mesh, "half-box", {
+        "base": ("the bonded base z = 0", box), "inflow": ("x = fem.upstream", box),
+        "outflow": ("x = -fem.downstream", box), "sym_y": ("the symmetry plane y = 0", box),
+        "lateral": ("y = fem.domain_radius", box), "zone": ("the candidate half disk", zone_set),
+        "free": ("the top outside the zone", f"{zone_set}, {box}")})
     return mesh
