@@ -6,6 +6,8 @@
 #   tools/mutation.sh MODULE [TEST_FILE ...]        e.g. tools/mutation.sh bem/kinematics.py
 #                                                   (MODULE may be a glob in quotes: 'bem/frictional/*')
 #   MUTATION_REF=<commit>  tools/mutation.sh ...    mutate/test another commit
+#   MUTATION_TESTS_REF=<commit> ...                 take tests/ from this commit instead (e.g. mutate the
+#                                                   sources of an older commit with newer tests)
 #   MUTATION_DIR=<dir>     tools/mutation.sh ...    scratch directory (default /tmp/viscolayer-mutation/<module>)
 #   MUTATION_NAMES='<mutant names or globs>' ...    only these mutants (e.g. the survivors of a full run)
 #   MUTATION_PYTEST_ARGS='--deselect NODE ...' ...  more pytest arguments (split on spaces), e.g. leave
@@ -42,7 +44,8 @@ default_tests() {
         bem/layer.py) echo tests/unit/test_layer.py tests/unit/test_properties_layer.py \
             tests/unit/test_derivation_eq45.py ;;
         bem/energy.py) echo tests/unit/test_properties_layer.py ;;
-        bem/friction.py|bem/frictional/*) echo tests/unit/test_mutation_kills_friction.py tests/unit/test_friction.py tests/unit/test_bem_friction_cli.py \
+        bem/friction.py|bem/frictional/*) echo tests/unit/test_mutation_kills_friction.py \
+            tests/unit/test_mutation_friction_solve.py tests/unit/test_friction.py tests/unit/test_bem_friction_cli.py \
             tests/unit/test_bem_displacement_control.py::test_frictional_rolling_under_displacement_control ;;
         bem/contact.py) echo tests/unit/test_mutation_kills_contact.py tests/unit/test_contact.py \
             tests/unit/test_properties_contact.py tests/unit/test_bem_displacement_control.py ;;
@@ -58,6 +61,10 @@ work=${MUTATION_DIR:-/tmp/viscolayer-mutation/$(echo "$module" | tr '/.*' '__x')
 rm -rf "$work"
 mkdir -p "$work"
 git -C "$here" archive "$ref" | tar -x -C "$work"
+if [ -n "${MUTATION_TESTS_REF:-}" ]; then
+    rm -rf "$work/tests"
+    git -C "$here" archive "$MUTATION_TESTS_REF" tests | tar -x -C "$work"
+fi
 cd "$work"
 present=()
 for t in "${tests[@]}"; do [ -f "${t%%::*}" ] && present+=("$t"); done
@@ -93,7 +100,7 @@ def pytest_collection_modifyitems(config, items):
     if duration:
         items.sort(key=lambda item: duration.get(item.nodeid, 0.0))
 PY
-echo "mutating $module of $(git -C "$here" rev-parse --short "$ref") in $work against: ${present[*]}" >&2
+echo "mutating $module of $(git -C "$here" rev-parse --short "$ref")${MUTATION_TESTS_REF:+ with the tests of $(git -C "$here" rev-parse --short "$MUTATION_TESTS_REF")} in $work against: ${present[*]}" >&2
 export MPLBACKEND=Agg OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 MKL_NUM_THREADS=1
 # MUTATION_NAMES="name1 name2 ..." (or globs such as 'bem.layer.x_system_matrix*') runs only those mutants
 # shellcheck disable=SC2086

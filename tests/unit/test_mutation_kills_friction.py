@@ -46,3 +46,543 @@ def test_reachability_at_its_limit():
         check_reachable("pushed_at_top", 0.11, (-cons[0], cons[1]), N0)  # |need| whatever its sign
     check_reachable("towed", 0.0, cons, N0)
     check_reachable("omega", 0.0, None, N0)
+
+
+# --------------------------------------------------------------------------------------
+# bem.frictional.operators: every block and product against a dense matrix assembled
+# column by column from ComplianceOperator's FFT product of unit forces (a different
+# algorithm from the direct table reads and the batched one-axis-at-a-time transforms),
+# on random, nonsymmetric kernel tables of a small grid with K_x != K_y and a_x != a_y.
+
+import math  # noqa: E402
+import types  # noqa: E402
+
+from bem.grid import Grid  # noqa: E402
+from bem.kinematics import upwind_table  # noqa: E402
+from bem.operator import ComplianceOperator  # noqa: E402
+from bem.spectral import BLOCKS  # noqa: E402
+
+SMALL = Grid(1.0e-3, 2.0e-3, 0.02, 0.04, 10, 10, 7, 5)  # 7 x 5 nodes
+
+
+def _random_kernels(grid, seed=3):
+    rng = np.random.default_rng(seed)
+    Ky, Kx = grid.shape
+    return {b: rng.normal(size=(2 * Ky - 1, 2 * Kx - 1)) * 10.0**-(i % 3) for i, b in enumerate(BLOCKS)}
+
+
+def _dense_of(grid, table):
+    """The matrix of the convolution with ``table``: column q is the FFT product of the
+    unit force on node q."""
+    n = grid.nodes_x * grid.nodes_y
+    op = ComplianceOperator(grid, table)
+    M = np.empty((n, n))
+    for q in range(n):
+        e = np.zeros(n)
+        e[q] = 1.0
+        M[:, q] = op.apply(e.reshape(grid.shape)).ravel()
+    return M
+
+
+def _close(got, want, rel=1e-13):
+    """Equal to FFT round-off: ``rel`` of the largest entry (measured a few 1e-15)."""
+    want = np.asarray(want)
+    np.testing.assert_allclose(got, want, rtol=0, atol=rel * np.abs(want).max())
+
+
+def test_operator_tables_and_dense_blocks_against_fft_products():
+    """``ops.dense(name)`` between any nodes is the FFT product's matrix; the ``d`` blocks
+    are the upwind x-differences ``(K(dx + 1) - K(dx)) / a_x`` of the ``u, v`` rows (a_x,
+    not a_y), ``ww, wu, wv`` are read undifferenced; ``diagonal`` is ``C_ww`` of a node on
+    itself; ``op`` serves kernels and differenced tables alike, built once."""
+    from bem.frictional.operators import DIFFERENCED, RollingOperators
+
+    kern = _random_kernels(SMALL)
+    ops = RollingOperators(SMALL, kern)
+    n = SMALL.nodes_x * SMALL.nodes_y
+    rng = np.random.default_rng(5)
+    rows, cols = rng.choice(n, 11, replace=False), rng.choice(n, 9, replace=False)
+    everything = np.arange(n)
+    assert set(ops.tables) == {"ww", "wu", "wv"} | {"d" + b for b in DIFFERENCED}
+    for name, table in ([(b, kern[b]) for b in ("ww", "wu", "wv")]
+                        + [("d" + b, upwind_table(kern[b], SMALL.spacing_x)) for b in DIFFERENCED]):
+        M = _dense_of(SMALL, table)
+        _close(ops.dense(name, everything, everything), M)
+        _close(ops.dense(name, rows, cols), M[np.ix_(rows, cols)])
+        F = rng.normal(size=SMALL.shape)
+        _close(ops.op(name).apply(F).ravel(), M @ F.ravel())
+    for b in BLOCKS:  # raw kernels through op() as well
+        F = rng.normal(size=SMALL.shape)
+        _close(ops.op(b).apply(F).ravel(), _dense_of(SMALL, kern[b]) @ F.ravel())
+    assert ops.op("duu") is ops.op("duu") and ops.op("uu") is not ops.op("duu")
+    # the upwind difference written out on the grid: (u_{i+1} - u_i) / a_x of u = C_uu F
+    F = rng.normal(size=SMALL.shape)
+    u = (_dense_of(SMALL, kern["uu"]) @ F.ravel()).reshape(SMALL.shape)
+    du = (ops.dense("duu", everything, everything) @ F.ravel()).reshape(SMALL.shape)
+    np.testing.assert_allclose(du[:, :-1], (u[:, 1:] - u[:, :-1]) / SMALL.spacing_x, rtol=0,
+                               atol=1e-9 * np.abs(du).max())
+    q = 17
+    assert ops.diagonal == pytest.approx(_dense_of(SMALL, kern["ww"])[q, q], rel=1e-14)
+    assert ops.diagonal == kern["ww"][SMALL.nodes_y - 1, SMALL.nodes_x - 1]  # offset (0, 0)
+    assert isinstance(ops.diagonal, float)
+
+
+@pytest.mark.parametrize("shape_in", ["grid", "flat"])
+def test_fields_and_displacements_are_the_signed_block_sums(shape_in):
+    """eq. 51 with F_W = -N: delta = C_ww N - C_wu S_x - C_wv S_y,
+    u = -C_uw N + C_uu S_x + C_uv S_y, v = -C_vw N + C_vu S_x + C_vv S_y, and the strains
+    du/dx, dv/dx their upwind differences; computed twice (cached spectra) with new forces."""
+    from bem.frictional.operators import RollingOperators
+
+    kern = _random_kernels(SMALL, seed=4)
+    ops = RollingOperators(SMALL, kern)
+    ax = SMALL.spacing_x
+    M = {b: _dense_of(SMALL, kern[b]) for b in BLOCKS}
+    D = {b: _dense_of(SMALL, upwind_table(kern[b], ax)) for b in ("uw", "uu", "uv", "vw", "vu", "vv")}
+    rng = np.random.default_rng(9)
+    for _ in range(2):
+        N, Sx, Sy = (rng.normal(size=SMALL.shape) for _ in range(3))
+        args = (N, Sx, Sy) if shape_in == "grid" else (N.ravel(), Sx.ravel(), Sy.ravel())
+        n, x, y = N.ravel(), Sx.ravel(), Sy.ravel()
+        fields = ops.fields(*args)
+        disp = ops.displacements(*args)
+        assert fields.shape == (3,) + SMALL.shape and disp.shape == (2,) + SMALL.shape
+        expect = [M["ww"] @ n - M["wu"] @ x - M["wv"] @ y,
+                  -D["uw"] @ n + D["uu"] @ x + D["uv"] @ y,
+                  -D["vw"] @ n + D["vu"] @ x + D["vv"] @ y]
+        for got, want in zip(fields, expect):
+            _close(got.ravel(), want)
+        expect = [-M["uw"] @ n + M["uu"] @ x + M["uv"] @ y, -M["vw"] @ n + M["vu"] @ x + M["vv"] @ y]
+        for got, want in zip(disp, expect):
+            _close(got.ravel(), want)
+
+
+def test_coarse_operators_are_every_other_node():
+    """The coarse level (bem.contact.coarse_grid, 25 x 25 -> 13 x 13) reads the kernels at
+    even offsets: its dense blocks between coarse nodes are the fine ones between the
+    same nodes, and its differences are over 2 a_x."""
+    from bem.contact import coarse_grid
+    from bem.frictional.operators import RollingOperators
+
+    fine = Grid(0.5e-3, 0.5e-3, 0.1, 0.1, 100, 100, 25, 25)
+    kern = _random_kernels(fine, seed=6)
+    ops = RollingOperators(fine, kern)
+    cg = coarse_grid(fine)
+    co = ops.coarse(cg)
+    assert co.grid is cg and co.grid.shape == (13, 13)
+    nodes = np.arange(13 * 13)
+    j, i = np.divmod(nodes, 13)
+    under = 2 * j * 25 + 2 * i  # the fine node under each coarse node
+    for b in ("ww", "wu", "wv"):
+        np.testing.assert_array_equal(co.dense(b, nodes, nodes), ops.dense(b, under, under))
+    # the coarse differences: (K(dx + 2) - K(dx)) / (2 a_x) read on the fine table, for
+    # coarse offsets below K_x - 1 (the last column repeats its neighbour)
+    uu = kern["uu"]
+    dj, di = j[:, None] - j[None, :], i[:, None] - i[None, :]
+    ok = di < 12
+    want = (uu[2 * dj[ok] + 24, 2 * di[ok] + 26] - uu[2 * dj[ok] + 24, 2 * di[ok] + 24]) / (2 * 0.5e-3)
+    np.testing.assert_allclose(co.dense("duu", nodes, nodes)[ok], want, rtol=1e-13, atol=0)
+    assert co.diagonal == kern["ww"][24, 24]
+
+
+# --------------------------------------------------------------------------------------
+# bem.frictional.preconditioner: the result is the exact inverse of its own line blocks
+# (the system's dense matrix restricted to one grid row of contact nodes, without the
+# normal-tangential coupling blocks, keeping the slip rows' -mu N), whatever the layout.
+
+from bem import Layer, Sphere, ThreeParameterSolid  # noqa: E402
+
+LAYER = Layer(5e-3, ThreeParameterSolid(G0=3.0e6, tau=0.25, f=1.0), 1000.0)
+V = 0.05
+GRID = Grid.centred((0.5e-3, 0.5e-3), (0.1, 0.1), (100, 100), (5.5e-3, 5.5e-3))  # 23 x 23
+
+
+@pytest.fixture(scope="module")
+def kernels():
+    from bem import influence_kernels
+
+    return influence_kernels(GRID, LAYER, V, blocks=BLOCKS)
+
+
+def _system(kernels, load=None, indentation=1e-4, omega=2.4, seed=0, flip=None):
+    """A synthetic set state on the frictionless contact of 20 N: random stick/slip
+    split, slip directions and slopes."""
+    from bem.contact import solve_normal
+    from bem.frictional import RollingOperators, RollingSetup, SetState, SetSystem
+    from bem.kinematics import rolling_radius
+
+    ops = RollingOperators(GRID, kernels)
+    X, Y = GRID.coordinates()
+    s = Sphere(0.02).profile(X, Y).ravel()
+    N0 = solve_normal(ops.op("ww"), s.reshape(GRID.shape), load=20.0).force.ravel()
+    rng = np.random.default_rng(seed)
+    contact = N0 > 0
+    stick = contact & (rng.random(N0.size) < 0.6)
+    if flip is not None:
+        stick[flip] = ~stick[flip]
+    ang = rng.uniform(0, 2 * np.pi, N0.size)
+    e = np.stack([np.cos(ang), np.sin(ang)], 1)
+    k = rng.uniform(0.1, 2.0, N0.size) * V / N0.max()
+    ell = rolling_radius(Sphere(0.02), Y).ravel()
+    arm = Sphere(0.02).rolling_arm(X, Y).ravel()
+    cons = None
+    if omega is None:
+        from bem.frictional.loading import constraint
+        cons = constraint("pushed_at_top", arm, ell, 0.02)
+    setup = RollingSetup(ops=ops, profile=s, arm=arm, ell=ell, radius=0.02, speed=V, mu=0.3, load=load,
+                         indentation=indentation, omega=omega, constraint=cons)
+    return SetSystem(setup, SetState(contact=contact, stick=stick & contact, direction=e, slope=k))
+
+
+def _line_blocks(system):
+    """The system's dense matrix (force unknowns) with every entry between different grid
+    rows, the gap rows' S_x, S_y columns and the x, y rows' N columns set to 0, except the
+    slip nodes' own -mu diag N in their magnitude rows."""
+    nC = system.nC
+    A = system.dense()[:3 * nC, :3 * nC].copy()
+    line = np.tile(system.Cj, 3)
+    A[line[:, None] != line[None, :]] = 0.0
+    keep = np.zeros(nC, bool)
+    keep[system.B] = True
+    coup = np.diag(A[nC:2 * nC, :nC]).copy()
+    A[:nC, nC:] = 0.0
+    A[nC:, :nC] = 0.0
+    A[nC + np.arange(nC), np.arange(nC)] = np.where(keep, coup, 0.0)
+    np.testing.assert_allclose(coup[keep], -0.3 * system.diag, rtol=1e-14)
+    return A
+
+
+@pytest.mark.parametrize("dtype, tol", [(np.float64, 1e-10), (np.float32, 2e-5)])
+@pytest.mark.parametrize("lu_from, pad", [(1000, 8), (1000, 1), (1, 8), (5, 3)])
+def test_line_preconditioner_is_the_inverse_of_its_line_blocks(kernels, dtype, tol, lu_from, pad):
+    """M (B x) = x for the line blocks B of a contact of 67 nodes on 9 grid rows (lines of
+    3 to 9 nodes, stick and slip mixed), by inverses, by LU factors (lu_from) or both, with
+    any padding; measured 2e-15 (double) and 4e-7 (single) relative."""
+    from bem.frictional.preconditioner import LinePreconditioner
+
+    system = _system(kernels)
+    assert 0 < system.A.size < system.nC and system.n == 3 * system.nC
+    assert len(set(system.Cj)) > 3
+    B = _line_blocks(system)
+    x = np.random.default_rng(1).normal(size=system.n)
+    pre = LinePreconditioner(pad=pad, dtype=dtype, lu_from=lu_from)
+    pre.attach(system)
+    got = system.precondition(B @ x)
+    assert got.shape == (system.n,)
+    assert np.abs(got - x).max() < tol * np.abs(x).max()
+    assert pre.factorised == len(set(system.Cj))
+
+
+def test_line_preconditioner_keeps_unchanged_lines_and_refactors_changed_ones(kernels):
+    """A second attach with the same sets inverts nothing; flipping one node between stick
+    and slip re-inverts only its line, and the result is again the exact inverse of the new
+    line blocks (not the old ones)."""
+    from bem.frictional.preconditioner import LinePreconditioner
+
+    pre = LinePreconditioner(dtype=np.float64)
+    first = _system(kernels)
+    lines = len(set(first.Cj))
+    pre.attach(first)
+    again = _system(kernels)
+    pre.attach(again)
+    assert pre.factorised == lines
+    x = np.random.default_rng(2).normal(size=again.n)
+    assert np.abs(again.precondition(_line_blocks(again) @ x) - x).max() < 1e-10 * np.abs(x).max()
+    node = first.C[first.nC // 2]
+    changed = _system(kernels, flip=node)
+    pre.attach(changed)
+    assert pre.factorised == lines + 1
+    B = _line_blocks(changed)
+    assert np.abs(changed.precondition(B @ x) - x).max() < 1e-10 * np.abs(x).max()
+    assert np.abs(changed.precondition(_line_blocks(first) @ x) - x).max() > 1e-6
+
+
+def test_line_preconditioner_with_global_unknowns(kernels):
+    """Load control and a free Omega add two unknowns: the force part of M r is still the
+    line blocks' inverse applied to the force rows, whatever the global rows hold."""
+    from bem.frictional.preconditioner import LinePreconditioner
+
+    system = _system(kernels, load=20.0, indentation=None, omega=None)
+    nC = system.nC
+    assert system.n == 3 * nC + 2
+    B = _line_blocks(system)
+    rng = np.random.default_rng(4)
+    r = rng.normal(size=system.n)
+    for lu_from in (1000, 1):
+        LinePreconditioner(dtype=np.float64, lu_from=lu_from).attach(system)
+        got = system.precondition(r)
+        assert got.shape == (system.n,) and np.isfinite(got).all()
+        np.testing.assert_allclose(B @ got[:3 * nC], r[:3 * nC], rtol=0, atol=1e-10 * np.abs(r).max())
+        r2 = r.copy()
+        r2[3 * nC:] *= 7.0
+        np.testing.assert_array_equal(system.precondition(r2)[:3 * nC], got[:3 * nC])
+
+
+def test_singular_long_line_is_an_error_naming_it(kernels, monkeypatch):
+    """A line block that LU cannot factor raises LinAlgError naming its size."""
+    from bem.frictional import preconditioner as pc
+
+    system = _system(kernels)
+    zero = {b: np.zeros_like(k) for b, k in kernels.items()}
+    system.ops.tables["ww"] = zero["ww"]
+    m = int(np.bincount(system.Cj).max())
+    with pytest.raises(np.linalg.LinAlgError, match=r"^singular line block of \d+ contact nodes \(getrf info \d+\)$"):
+        pc.LinePreconditioner(lu_from=1).attach(system)
+    assert m > 1
+
+
+# --------------------------------------------------------------------------------------
+# bem.frictional.starts: the start states against their definitions, the continuation's
+# ladder of mu, its starts, history and messages (run_active_set replaced by a recorder).
+
+from bem.friction import Friction, FrictionNotConverged  # noqa: E402
+
+
+def test_frictionless_start_all_stick_without_omega():
+    from bem.frictional.starts import frictionless_start
+
+    N0 = np.array([0.0, 1.0, 2.0, -1.0, 3.0])
+    st = frictionless_start(N0, np.ones(5), 1.0, Friction(0.3, "towed"))
+    np.testing.assert_array_equal(st.contact, N0 > 0)
+    np.testing.assert_array_equal(st.stick, N0 > 0)
+    assert st.direction.shape == (5, 2) and not st.direction.any() and not st.slope.any()
+
+
+def test_frictionless_start_slips_where_the_rigid_creep_exceeds_one_percent():
+    """creep = V - Omega l; |creep| > 1e-2 V slips along (sign creep, 0) with
+    k = |creep| / (mu N0); exactly 1 % sticks (V = 100 m/s: the tie is exact)."""
+    from bem.frictional.starts import frictionless_start
+
+    V_, om = 100.0, 1.0
+    ell = np.array([99.0, 101.0, 97.0, 102.5, 100.0, 90.0])  # creep 1, -1, 3, -2.5, 0, 10
+    N0 = np.array([1.0, 2.0, 4.0, 5.0, 3.0, 0.0])
+    st = frictionless_start(N0, ell, V_, Friction(0.5, "omega", omega=om))
+    np.testing.assert_array_equal(st.contact, [1, 1, 1, 1, 1, 0])
+    np.testing.assert_array_equal(st.stick, [1, 1, 0, 0, 1, 0])
+    np.testing.assert_array_equal(st.direction, [[0, 0], [0, 0], [1, 0], [-1, 0], [0, 0], [0, 0]])
+    np.testing.assert_allclose(st.slope, [0, 0, 3.0 / (0.5 * 4.0), 2.5 / (0.5 * 5.0), 0, 0], rtol=1e-15)
+
+
+def test_coarse_start_from_the_nearest_upstream_coarse_node():
+    """Fine node (j, i) reads coarse node (ceil(j/2), ceil(i/2)); it slips when it is in the
+    fine contact, that coarse node slipped with |S| > 0 and |w| > 0, along S/|S| with
+    k = |w| / (mu N0); otherwise it sticks (in contact)."""
+    from bem.frictional.starts import coarse_start
+
+    rng = np.random.default_rng(8)
+    cy, cx = 4, 5
+    shape = (2 * cy - 1, 2 * cx - 1)
+    cc = rng.random((cy, cx)) < 0.8
+    cs = cc & (rng.random((cy, cx)) < 0.4)
+    fx, fy = rng.normal(size=(cy, cx)), rng.normal(size=(cy, cx))
+    wx, wy = rng.normal(size=(cy, cx)), rng.normal(size=(cy, cx))
+    fx[0, 1] = fy[0, 1] = 0.0  # slipping with no force: sticks
+    wx[1, 1] = wy[1, 1] = 0.0  # slipping at rest: sticks
+    cc[0, 1] = cc[1, 1] = True
+    cs[0, 1] = cs[1, 1] = False
+    res = types.SimpleNamespace(force_x=fx, force_y=fy, slip_x=wx, slip_y=wy, contact=cc, stick=cs)
+    N0 = np.where(rng.random(shape) < 0.85, rng.uniform(0.5, 2.0, shape), 0.0).ravel()
+    mu = 0.4
+    st = coarse_start(res, shape, N0, mu)
+    for j in range(shape[0]):
+        for i in range(shape[1]):
+            p, c = j * shape[1] + i, (math.ceil(j / 2), math.ceil(i / 2))
+            S, w = np.array([fx[c], fy[c]]), np.array([wx[c], wy[c]])
+            slips = N0[p] > 0 and cc[c] and not cs[c] and np.hypot(*S) > 0 and np.hypot(*w) > 0
+            assert st.contact[p] == (N0[p] > 0)
+            assert st.stick[p] == (N0[p] > 0 and not slips), (j, i)
+            if slips:
+                np.testing.assert_allclose(st.direction[p], S / np.hypot(*S), rtol=1e-15)
+                assert st.slope[p] == pytest.approx(np.hypot(*w) / (mu * N0[p]), rel=1e-15)
+            else:
+                assert not st.direction[p].any() and st.slope[p] == 0.0
+    assert (~st.stick & st.contact).sum() >= 5
+
+
+def _fake_setup():
+    from bem.frictional.system import RollingSetup
+
+    return RollingSetup(ops=None, profile=np.zeros(4), arm=np.zeros(4), ell=np.array([1.0, 1.0, 2.0, 0.5]),
+                        radius=0.02, speed=1.0, mu=0.0, load=1.0, indentation=None, omega=None, constraint=None)
+
+
+@pytest.mark.parametrize("mu, ladder", [
+    (1e-3, [0.256, 0.128, 0.064, 0.032, 0.016, 0.008, 0.004, 0.002, 0.001]),
+    (0.03, [0.24, 0.12, 0.06, 0.03]),
+    (0.15, [0.3, 0.15]),
+    (0.2, [0.4, 0.2]),
+    (0.7, [1.4, 0.7]),
+])
+def test_continuation_ladder_starts_and_history(monkeypatch, mu, ladder):
+    """mu 2^K (K >= 1 the smallest with mu 2^K >= 0.2) halved down to mu; the first solve
+    starts from the frictionless start, each next one from the previous sets; the setup
+    and friction carry the ladder's mu; histories are concatenated; the progress line."""
+    from bem.frictional import starts
+    from bem.frictional.active_set import ActiveSetResult
+
+    calls = []
+
+    def fake(setup, friction, state, solves, progress):
+        calls.append((setup.mu, friction.mu, friction.mode, state, solves))
+        marker = types.SimpleNamespace(mu=friction.mu)
+        return ActiveSetResult(N=np.full(4, friction.mu), Sx=None, Sy=None, indentation=0.0, omega=0.0,
+                               state=marker, history=[(len(calls), friction.mu)], gap=None, scale=1.0)
+
+    monkeypatch.setattr(starts, "run_active_set", fake)
+    N0 = np.array([1.0, 0.0, 2.0, 3.0])
+    lines = []
+    solves = object()
+    out = starts.continuation(_fake_setup(), Friction(mu, "towed"), N0, solves, lines.append, RuntimeError("x"))
+    assert [c[0] for c in calls] == pytest.approx(ladder, rel=1e-12)
+    assert [c[1] for c in calls] == pytest.approx(ladder, rel=1e-12)
+    assert all(c[2] == "towed" and c[4] is solves for c in calls)
+    first = calls[0][3]
+    ref = starts.frictionless_start(N0, _fake_setup().ell, 1.0, Friction(mu, "towed"))
+    np.testing.assert_array_equal(first.contact, ref.contact)
+    np.testing.assert_array_equal(first.stick, ref.stick)
+    for prev, (_, _, _, state, _) in zip(calls, calls[1:]):
+        assert state.mu == prev[1]
+    assert out.history == [(i + 1, m) for i, m in enumerate(c[1] for c in calls)]
+    assert out.N[0] == calls[-1][1] and out.state.mu == calls[-1][1]
+    assert lines == [f"friction: direct solve failed (x); continuation in mu from {ladder[0]:.4g}"]
+    starts.continuation(_fake_setup(), Friction(mu, "towed"), N0, solves, None, RuntimeError("x"))  # quiet
+
+
+def test_continuation_failure_names_where_it_stopped(monkeypatch):
+    from bem.frictional import starts
+    from bem.frictional.active_set import ActiveSetResult
+
+    def fake(setup, friction, state, solves, progress):
+        if friction.mu < 0.1:
+            raise FrictionNotConverged("cycled")
+        return ActiveSetResult(N=None, Sx=None, Sy=None, indentation=0.0, omega=0.0, state=state,
+                               history=[], gap=None, scale=1.0)
+
+    monkeypatch.setattr(starts, "run_active_set", fake)
+    with pytest.raises(FrictionNotConverged) as info:
+        starts.continuation(_fake_setup(), Friction(0.03, "torque"), np.ones(4), None, None, RuntimeError("boom"))
+    assert str(info.value) == (
+        "mode 'torque', mu = 0.03: the direct solve failed (boom) and the continuation in mu stopped at "
+        "mu = 0.06 (cycled); try mode 'omega' with a prescribed Omega, or a finer grid")
+    assert isinstance(info.value.__cause__, FrictionNotConverged)
+
+
+# --------------------------------------------------------------------------------------
+# bem.friction: validation messages whole, defaults as the case-file schema documents
+# them, the record's residual, the result's derived fields recomputed by hand.
+
+@pytest.mark.parametrize("kwargs, message", [
+    ({"mu": -0.1}, "mu must be >= 0, got -0.1"),
+    ({"mu": math.nan}, "mu must be >= 0, got nan"),
+    ({"mu": math.inf}, "mu must be >= 0, got inf"),
+    ({"mu": "0.2"}, "mu must be >= 0, got '0.2'"),
+    ({"mu": 0.2, "mode": "pulled"}, "mode must be one of pushed_at_top, towed, torque, omega, got 'pulled'"),
+    ({"mu": 0.2, "mode": "omega"},
+     "omega (rad/s) must be given with mode = 'omega' and only then, got mode = 'omega', omega = None"),
+    ({"mu": 0.2, "omega": 1.0},
+     "omega (rad/s) must be given with mode = 'omega' and only then, got mode = 'pushed_at_top', omega = 1.0"),
+    ({"mu": 0.2, "mode": "omega", "omega": math.inf}, "omega must be finite (rad/s), got inf"),
+    ({"mu": 0.2, "mode": "omega", "omega": math.nan}, "omega must be finite (rad/s), got nan"),
+    ({"mu": 0.2, "radius": -1.0}, "radius must be > 0 m, got -1.0"),
+    ({"mu": 0.2, "radius": 0.0}, "radius must be > 0 m, got 0.0"),
+    ({"mu": 0.2, "radius": math.inf}, "radius must be > 0 m, got inf"),
+    ({"mu": 0.2, "radius": math.nan}, "radius must be > 0 m, got nan"),
+    ({"mu": 0.2, "max_iter": 0}, "max_iter must be an integer > 0, got 0"),
+    ({"mu": 0.2, "max_iter": 2.0}, "max_iter must be an integer > 0, got 2.0"),
+    ({"mu": 0.2, "direction_tol": 0.0}, "direction_tol must be > 0, got 0.0"),
+    ({"mu": 0.2, "direction_tol": math.nan}, "direction_tol must be > 0, got nan"),
+    ({"mu": 0.2, "dense_limit": -1}, "dense_limit must be an integer >= 0, got -1"),
+    ({"mu": 0.2, "dense_limit": 10.0}, "dense_limit must be an integer >= 0, got 10.0"),
+    ({"mu": 0.2, "set_tol": -1e-9}, "set_tol must be >= 0, got -1e-09"),
+    ({"mu": 0.2, "set_tol": math.nan}, "set_tol must be >= 0, got nan"),
+])
+def test_friction_validation_messages_whole(kwargs, message):
+    with pytest.raises(ValueError) as info:
+        Friction(**kwargs)
+    assert str(info.value) == message
+
+
+def test_friction_limits_accepted_and_defaults_as_documented():
+    """The limits themselves are accepted (mu = 0, omega = 0, max_iter = 1, dense_limit = 0,
+    set_tol = 0, a tiny radius and direction_tol); the defaults are the case-file schema's."""
+    from casefile.schema import section
+
+    Friction(0, "omega", omega=0.0, radius=1e-12, max_iter=1, direction_tol=1e-300, dense_limit=0, set_tol=0.0)
+    Friction(0.0, "omega", omega=-3.0)
+    f = Friction(0.2)
+    keys = {k.name: k.default for k in section("friction").keys}
+    for name in ("mode", "max_iter", "direction_tol", "set_tol", "dense_limit"):
+        assert getattr(f, name) == keys[name], name
+    assert f.omega is None and f.radius is None
+
+
+def test_friction_errors_are_contact_errors():
+    from bem.contact import ContactError, ContactNotConverged
+    from bem.friction import LoadingUnreachable
+
+    assert issubclass(FrictionNotConverged, ContactNotConverged)
+    assert issubclass(LoadingUnreachable, ContactError) and not issubclass(LoadingUnreachable, ContactNotConverged)
+
+
+def _contact_result(**over):
+    from bem.friction import FrictionalContact, FrictionRecord
+
+    g = Grid(1.0e-3, 2.0e-3, 0.02, 0.04, 10, 10, 4, 3)
+    N = np.array([[0.0, 1.0, 2.0, 0.0], [3.0, 0.0, 5.0, -1.0], [0.0, 0.5, 0.0, 0.0]])
+    Sx = np.array([[0.0, 0.1, -0.2, 0.0], [0.3, 0.0, 0.4, 0.0], [0.0, -0.05, 0.0, 0.0]])
+    Sy = np.array([[0.0, 0.2, 0.1, 0.0], [-0.1, 0.0, 0.2, 0.0], [0.0, 0.05, 0.0, 0.0]])
+    wx = np.array([[0.0, 0.0, -2.0, 0.0], [1.5, 0.0, 0.0, 0.0], [0.0, -1.0, 0.0, 0.0]])
+    wy = np.array([[0.0, 0.0, 1.0, 0.0], [-0.5, 0.0, 0.0, 0.0], [0.0, 1.0, 0.0, 0.0]])
+    stick = np.array([[0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 0]], bool)
+    rec = FrictionRecord(3, ((5, 2, 0.5, 1.0), (5, 2, 1e-3, 1.1), (5, 2, 1e-9, 1.2)), "gmres", 42,
+                         1e-11, 2e-12, 3e-8)
+    fields = dict(grid=g, force=N, force_x=Sx, force_y=Sy, deflection=N * 1e-6, displacement_x=Sx * 1e-6,
+                  displacement_y=Sy * 1e-6, gap=N * 0.0, slip_x=wx, slip_y=wy, stick=stick, indentation=1e-4,
+                  load=11.5, omega=1.2, driving_force=0.7, driving_torque=0.014, rolling_resistance=0.9,
+                  rolling_resistance_friction=0.25, rolling_resistance_viscous=0.65, speed=0.05, mu=0.3,
+                  mode="towed", record=rec)
+    fields.update(over)
+    return FrictionalContact(**fields)
+
+
+def test_frictional_contact_derived_fields_by_hand():
+    from bem.contact import SHARED_SCALARS
+
+    r = _contact_result()
+    assert r.record.residual == 3e-8
+    assert type(r).__dataclass_fields__["rolling_resistance_energy"].default is not None
+    assert math.isnan(r.rolling_resistance_energy)
+    contact = r.force > 0
+    np.testing.assert_array_equal(r.contact, contact)
+    np.testing.assert_array_equal(r.slip, contact & ~r.stick)
+    assert r.slip.sum() == 3
+    area = 1e-3 * 2e-3
+    np.testing.assert_allclose(r.pressure, r.force / area, rtol=1e-15)
+    np.testing.assert_allclose(r.traction_x, r.force_x / area, rtol=1e-15)
+    np.testing.assert_allclose(r.traction_y, r.force_y / area, rtol=1e-15)
+    assert r.stick_fraction == 2 / 5
+    assert r.contact_area == pytest.approx(5 * area, rel=1e-15)
+    assert r.contact_radius == pytest.approx(math.sqrt(5 * area / math.pi), rel=1e-15)
+    assert r.peak_pressure == pytest.approx(5.0 / area, rel=1e-15) and isinstance(r.peak_pressure, float)
+    x = (np.arange(4) - 1.5) * 1e-3
+    assert r.pressure_centroid_x == pytest.approx(float((r.force * x).sum() / r.force.sum()), rel=1e-14)
+    # S . w over the contact: (-0.2)(-2) + 0.1 * 1 + 0.3 * 1.5 + (-0.1)(-0.5) + (-0.05)(-1) + 0.05 * 1
+    assert r.friction_power == pytest.approx(0.4 + 0.1 + 0.45 + 0.05 + 0.05 + 0.05, rel=1e-14)
+    empty = _contact_result(force=np.zeros((3, 4)))
+    assert math.isnan(empty.stick_fraction)
+    s = r.summary()
+    for name in SHARED_SCALARS:
+        assert s[name] == getattr(r, name) or (math.isnan(s[name]) and math.isnan(getattr(r, name))), name
+    for name in ("rolling_resistance_friction", "rolling_resistance_viscous", "omega", "driving_force",
+                 "driving_torque", "stick_fraction", "mu", "mode", "speed"):
+        assert s[name] == getattr(r, name), name
+    assert math.isnan(s["rolling_resistance_energy"])
+    assert s["grid"] == {"nodes": [4, 3], "spacing": [1e-3, 2e-3], "period": [0.02, 0.04], "truncation": [10, 10]}
+    assert s["solver"] == {"iterations": 3, "residual": 3e-8,
+                           "history": [[5, 2, 0.5, 1.0], [5, 2, 1e-3, 1.1], [5, 2, 1e-9, 1.2]],
+                           "gap_residual": 1e-11, "stick_residual": 2e-12, "coulomb_residual": 3e-8,
+                           "linear_solver": "gmres", "linear_iterations": 42}
+    assert _contact_result(rolling_resistance_energy=1.5).summary()["rolling_resistance_energy"] == 1.5
+    rec = r.record
+    assert type(rec)(1, (), "dense", 0, 0.3, 0.2, 0.1).residual == 0.3
+    assert type(rec)(1, (), "dense", 0, 0.1, 0.3, 0.2).residual == 0.3
