@@ -45,12 +45,12 @@ KEYS = ("rolling_resistance", "rolling_resistance_energy", "indentation", "leadi
 
 def one(h: float, grading: float, far: float, scale_domain: float, solver: str = "auto") -> dict:
     """One solve in this process; a JSON-ready dict. ``solver``: the linear solver of
-    :mod:`fem_reference.rolling3d_solve` ("auto", "pardiso" or "superlu")."""
+    :mod:`fem_reference.rolling_solve` ("auto", "pardiso" or "superlu")."""
     from fem_reference import (ContactProblem, FemSettings, Indenter, Layer, Loading,
-                               ThreeParameterMaterial, rolling3d_solve, solve)
+                               ThreeParameterMaterial, rolling_solve, solve)
     from fem_reference.rolling3d_discretization import resolve_box
 
-    rolling3d_solve.LINEAR_SOLVER = solver
+    rolling_solve.LINEAR_SOLVER = solver
 
     base = ContactProblem(Layer(H, 1000.0), ThreeParameterMaterial(3e6, 0.25, 1.0),
                           Indenter("sphere", 0.02), Loading(load=150.0, speed=0.05),

@@ -1,9 +1,9 @@
 """Exactly incompressible finite-element reference for frictionless contact on a layer
 bonded to a rigid base: stationary elastic indentation (axisymmetric or 3D), and steady
 rolling on an elastic or viscoelastic (Prony, three-parameter) layer in the frame of the
-indenter: of a rigid cylinder in plane strain (:mod:`.rolling_solve`, docs/derivations.md
-section 7) and of a rigid sphere in 3D on the half layer y >= 0 (:mod:`.rolling3d_solve`,
-section 9; ``fem.model = "3d"`` with ``loading.speed`` > 0).
+indenter (one driver, :mod:`.rolling_solve`): of a rigid cylinder in plane strain
+(docs/derivations.md section 7) and of a rigid sphere in 3D on the half layer y >= 0
+(section 9; ``fem.model = "3d"`` with ``loading.speed`` > 0).
 
 Taylor-Hood P2-P1 displacement-pressure elements (scikit-fem) on gmsh meshes
 (read through meshio, named physical groups, refined around the contact), in an

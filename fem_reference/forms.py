@@ -80,6 +80,7 @@ def coupling_3d(u, mu, w):
 
 @LinearForm
 def area_3d(mu, w):
+    """mu: m^2 on a 3D surface (m per unit length on the plane-strain section's top)."""
     return mu
 
 

@@ -21,11 +21,13 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from .discretization import check_zone
 from .errors import InputError
 from .materials import PronyMaterial, as_prony
 from .problem import ContactProblem
 
-__all__ = ["PlaneDiscretization", "band_depth", "estimate_half_width", "resolve_plane", "creep_length"]
+__all__ = ["PlaneDiscretization", "band_depth", "check_flow_lengths", "creep_length",
+           "estimate_half_width", "resolve_plane"]
 
 
 @dataclass(frozen=True)
@@ -47,6 +49,12 @@ class PlaneDiscretization:
     estimated_half_width: float
     creep_length: float
     refine: int
+
+    @property
+    def far_size(self) -> float:
+        """``fem.far_size`` resolved (m): far_z, the largest row height, and far_x_up (the
+        x spacing downstream may grow further, to far_x_down)."""
+        return self.far_z
 
 
 def estimate_half_width(problem: ContactProblem) -> float:
@@ -85,6 +93,30 @@ def creep_length(problem: ContactProblem) -> float:
     return problem.loading.speed * mat.retardation_time
 
 
+def check_flow_lengths(problem: ContactProblem, zone: float, near: float, upstream: float,
+                       downstream: float, size: str, defaults: str) -> None:
+    """Raise :class:`InputError` unless the material enters undeformed and relaxed and
+    relaxes before it leaves (both rolling models): upstream >= Z + 2 near and
+    downstream >= Z + 2 near + 3 V t_r, with ``near`` = max(H, ``size``) (m), ``size`` the
+    name of the contact-size estimate in the message, ``defaults`` "(up, down)" the
+    model's default multipliers "a H, b size[, c V t_r]" as text."""
+    lv = creep_length(problem)
+    up_default, down_default = defaults
+    need_up = zone + 2.0 * near
+    if upstream < need_up:
+        raise InputError(
+            f"fem.upstream = {upstream:.4g} m is too short: the material must enter undeformed and "
+            f"relaxed, which needs the inflow at least contact_zone + 2 max(H, {size}) = {need_up:.4g} m "
+            f"ahead of the indenter; raise fem.upstream (default contact_zone + max({up_default}))")
+    need_down = need_up + 3.0 * lv
+    if downstream < need_down:
+        raise InputError(
+            f"fem.downstream = {downstream:.4g} m is too short for the material to relax before it "
+            f"leaves: it needs at least contact_zone + 2 max(H, {size}) + 3 V t_r = {need_down:.4g} m "
+            f"(V t_r = {lv:.4g} m, the creep length at {problem.loading.speed:g} m/s); raise "
+            f"fem.downstream (default contact_zone + max({down_default}))")
+
+
 def resolve_plane(problem: ContactProblem) -> PlaneDiscretization:
     """Fill in the plane-strain defaults of ``problem.fem`` and check the lengths.
 
@@ -101,30 +133,13 @@ def resolve_plane(problem: ContactProblem) -> PlaneDiscretization:
     h = fem.element_size or min(b / 30.0, H / 8.0)
     zone = fem.contact_zone or 1.5 * b
     lv = creep_length(problem)
-    near = max(H, b)
     upstream = fem.upstream or zone + max(8.0 * H, 6.0 * b)
     downstream = fem.downstream or zone + max(8.0 * H, 6.0 * b, 8.0 * lv)
     far = fem.far_size or max(H / 2.0, h)
     far = max(far, h)
-    if zone >= problem.indenter.radius:
-        raise InputError(f"fem.contact_zone must be < indenter.radius = {problem.indenter.radius} m "
-                         f"for a cylinder, got {zone}")
-    if zone < 4.0 * h:
-        raise InputError(f"fem.contact_zone must be >= 4 element sizes = {4.0 * h} m, got {zone}")
-    need_up = zone + 2.0 * near
-    if upstream < need_up:
-        raise InputError(
-            f"fem.upstream = {upstream:.4g} m is too short: the material must enter undeformed and "
-            f"relaxed, which needs the inflow at least contact_zone + 2 max(H, b_est) = {need_up:.4g} m "
-            f"ahead of the indenter (default contact_zone + max(8 H, 6 b_est) = "
-            f"{zone + max(8.0 * H, 6.0 * b):.4g} m); raise fem.upstream")
-    need_down = zone + 2.0 * near + 3.0 * lv
-    if downstream < need_down:
-        raise InputError(
-            f"fem.downstream = {downstream:.4g} m is too short for the material to relax before it "
-            f"leaves: it needs at least contact_zone + 2 max(H, b_est) + 3 V t_r = {need_down:.4g} m "
-            f"(V t_r = {lv:.4g} m, the creep length at {problem.loading.speed:g} m/s); raise "
-            "fem.downstream (default contact_zone + max(8 H, 6 b_est, 8 V t_r))")
+    check_zone(problem, zone, h)
+    check_flow_lengths(problem, zone, max(H, b), upstream, downstream, "b_est",
+                       ("8 H, 6 b_est", "8 H, 6 b_est, 8 V t_r"))
     return PlaneDiscretization(element_size=h / 2 ** fem.refine, mesh_size=h, contact_zone=zone,
                                band=band_depth(H, zone, h), upstream=upstream, downstream=downstream,
                                far_x_up=far, far_x_down=max(far, lv / 4.0), far_z=far,

@@ -122,7 +122,7 @@ class FemSettings:
         Axisymmetric (r, z) model, a quarter cylinder in 3D (symmetry planes
         x = 0 and y = 0), or the plane-strain (x, z) section of a line contact. With
         ``loading.speed`` > 0, "3d" is steady rolling of a sphere on the half box
-        y >= 0 (:mod:`.rolling3d_solve`).
+        y >= 0 (:mod:`.rolling_solve`, :mod:`.rolling3d_system`).
         Default: "plane_strain" for a line indenter, "axisymmetric" otherwise.
     element_size : float, optional
         Element size h_c (m) in the candidate contact zone. Default: axisymmetric

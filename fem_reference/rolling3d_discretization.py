@@ -4,7 +4,8 @@ defaults resolved, and the checks that the truncated layer is long and wide enou
 The defaults scale with an a-priori contact radius a_est (m) for the relaxed modulus
 G_inf (the widest contact), the smaller of the Hertz radius (3 P R / (16 G_inf))^(1/3)
 and the thin-layer asymptote (32 P R H^3 / (pi G_inf))^(1/6)
-(:mod:`.discretization`); under displacement control sqrt(2 R d).
+(:func:`.discretization.estimate_contact_radius`, the stationary models' estimate);
+under displacement control sqrt(2 R d).
 
 Lengths (m): the material enters at x = upstream, undeformed and relaxed, and leaves at
 x = -downstream; the half layer ends at y = lateral (``fem.domain_radius``, traction
@@ -19,14 +20,14 @@ growing as h_c + grading * distance up to ``fem.far_size`` (default H).
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
+from .discretization import check_zone, estimate_contact_radius
 from .errors import InputError
-from .plane_discretization import creep_length
+from .plane_discretization import check_flow_lengths, creep_length
 from .problem import ContactProblem
 
-__all__ = ["BoxDiscretization", "estimate_radius", "resolve_box"]
+__all__ = ["BoxDiscretization", "resolve_box"]
 
 
 @dataclass(frozen=True)
@@ -47,19 +48,6 @@ class BoxDiscretization:
     refine: int
 
 
-def estimate_radius(problem: ContactProblem) -> float:
-    """A-priori contact radius a_est (m) for the relaxed modulus (module docstring)."""
-    R = problem.indenter.radius
-    H = problem.layer.thickness
-    G = problem.material.relaxed_modulus
-    if problem.loading.load is not None:
-        P = problem.loading.load
-        a_hertz = (3.0 * P * R / (16.0 * G)) ** (1.0 / 3.0)
-        a_thin = (32.0 * P * R * H ** 3 / (math.pi * G)) ** (1.0 / 6.0)
-        return min(a_hertz, a_thin)
-    return math.sqrt(2.0 * R * problem.loading.indentation)
-
-
 def resolve_box(problem: ContactProblem) -> BoxDiscretization:
     """Fill in the 3D rolling defaults of ``problem.fem`` and check the lengths.
 
@@ -72,7 +60,7 @@ def resolve_box(problem: ContactProblem) -> BoxDiscretization:
     """
     fem = problem.fem
     H = problem.layer.thickness
-    a = estimate_radius(problem)
+    a = estimate_contact_radius(problem)
     h = fem.element_size or min(a / 10.0, H / 5.0)
     zone = fem.contact_zone or 1.5 * a
     lv = creep_length(problem)
@@ -81,30 +69,14 @@ def resolve_box(problem: ContactProblem) -> BoxDiscretization:
     downstream = fem.downstream or zone + max(6.0 * H, 4.0 * a, 6.0 * lv)
     lateral = fem.domain_radius or zone + max(6.0 * H, 4.0 * a)
     far = max(fem.far_size or H, h)
-    if zone >= problem.indenter.radius:
-        raise InputError(f"fem.contact_zone must be < indenter.radius = {problem.indenter.radius} m "
-                         f"for a sphere, got {zone}")
-    if zone < 4.0 * h:
-        raise InputError(f"fem.contact_zone must be >= 4 element sizes = {4.0 * h} m, got {zone}")
-    need = zone + 2.0 * near
-    if upstream < need:
-        raise InputError(
-            f"fem.upstream = {upstream:.4g} m is too short: the material must enter undeformed and "
-            f"relaxed, which needs the inflow at least contact_zone + 2 max(H, a_est) = {need:.4g} m "
-            f"ahead of the indenter; raise fem.upstream (default contact_zone + max(6 H, 4 a_est) = "
-            f"{zone + max(6.0 * H, 4.0 * a):.4g} m)")
-    if lateral < need:
+    check_zone(problem, zone, h)
+    if lateral < zone + 2.0 * near:
         raise InputError(
             f"fem.domain_radius = {lateral:.4g} m (the lateral extent y of the 3d rolling model) is "
-            f"too short: it needs at least contact_zone + 2 max(H, a_est) = {need:.4g} m; raise "
-            "fem.domain_radius")
-    need_down = need + 3.0 * lv
-    if downstream < need_down:
-        raise InputError(
-            f"fem.downstream = {downstream:.4g} m is too short for the material to relax before it "
-            f"leaves: it needs at least contact_zone + 2 max(H, a_est) + 3 V t_r = {need_down:.4g} m "
-            f"(V t_r = {lv:.4g} m, the creep length at {problem.loading.speed:g} m/s); raise "
-            "fem.downstream (default contact_zone + max(6 H, 4 a_est, 6 V t_r))")
+            f"too short: it needs at least contact_zone + 2 max(H, a_est) = {zone + 2.0 * near:.4g} m; "
+            "raise fem.domain_radius")
+    check_flow_lengths(problem, zone, near, upstream, downstream, "a_est",
+                       ("6 H, 4 a_est", "6 H, 4 a_est, 6 V t_r"))
     length = max(upstream, downstream)  # the mesh is mirror-symmetric about x = 0
     return BoxDiscretization(element_size=h / 2 ** fem.refine, mesh_size=h, contact_zone=zone,
                              upstream=length, downstream=length, lateral=lateral,

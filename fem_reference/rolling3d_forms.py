@@ -26,6 +26,7 @@ from __future__ import annotations
 from skfem import BilinearForm, Functional
 from skfem.helpers import ddot, sym_grad
 
+from .forms import coupling_3d as coupling  # mu u_z, as in the stationary 3D model
 from .rolling_forms import area, branch_advection, pressure_mass, weighted  # the same in 3D
 
 __all__ = ["glassy_stiffness", "divergence", "branch_stress", "branch_advection",
@@ -84,12 +85,6 @@ def branch_stress(a, v, w):
 def branch_source(u, phi, w):
     """-2 G E_k(u) (phi - delta l dphi/dx): the strain that drives component k."""
     return -2.0 * w.G * deviator(u, w.comp) * (phi - w.delta * w.ell * phi.grad[0])
-
-
-@BilinearForm
-def coupling(u, mu, w):
-    """mu u_z on the top surface."""
-    return mu * u[2]
 
 
 @Functional

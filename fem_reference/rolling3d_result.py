@@ -8,28 +8,7 @@ import numpy as np
 
 from .rolling_result import RollingResult
 
-__all__ = ["BoxMeshStats", "SphereRollingResult"]
-
-
-@dataclass(frozen=True)
-class BoxMeshStats:
-    """Size of the 3D rolling discretization (half layer). Lengths in m."""
-
-    model: str
-    elements: int
-    vertices: int
-    displacement_dofs: int
-    pressure_dofs: int
-    internal_dofs: int
-    unknowns: int
-    contact_nodes: int
-    element_size: float
-    contact_zone: float
-    upstream: float
-    downstream: float
-    lateral: float
-    far_size: float
-    grading: float
+__all__ = ["SphereRollingResult"]
 
 
 @dataclass(frozen=True)

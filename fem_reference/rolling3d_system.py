@@ -21,15 +21,14 @@ from __future__ import annotations
 import time
 
 import numpy as np
-import scipy.sparse as sp
-from skfem import Basis, ElementTetP1, ElementTetP2, ElementVector, asm, bmat
+from skfem import Basis, ElementTetP1, ElementTetP2, ElementVector, asm
 
 from . import rolling3d_forms as rf
-from .materials import PronyMaterial, as_prony
 from .mesh_box import half_box_mesh
 from .problem import ContactProblem
 from .rolling3d_discretization import BoxDiscretization
-from .rolling_system import RollingSystem, diagonal_scale, element_hx, multiplier_coupling, restrict
+from .rolling_system import (RollingSystem, assemble_blocks, diagonal_scale, element_hx,
+                             multiplier_coupling, restrict)
 
 __all__ = ["BoxSystem", "build_box_system", "sphere_profile", "sphere_slope"]
 
@@ -78,6 +77,17 @@ class BoxSystem(RollingSystem):
 
     COMPONENTS = NC
 
+    def dissipation(self, u: np.ndarray, w: list, V: float) -> float:
+        """Power (W) dissipated by the dashpots in the half layer: sum_i int 2 G_i (dev eps -
+        eps_v,i) : (-V d eps_v,i / dx) dV; 0 without branches."""
+        ub, wb = self.ubasis, self.wbasis
+        total = 0.0
+        uf = ub.interpolate(u)
+        for (Gi, _), comps in zip(self.branches, w):
+            fields = {f"w{k}": wb.interpolate(c) for k, c in enumerate(comps)}
+            total += rf.dashpot_power.assemble(wb, u=uf, G=Gi, V=V, **fields)
+        return float(total)
+
 
 def build_box_system(problem: ContactProblem, disc: BoxDiscretization) -> BoxSystem:
     """Mesh and assemble the half layer of ``problem`` (module docstring)."""
@@ -88,35 +98,12 @@ def build_box_system(problem: ContactProblem, disc: BoxDiscretization) -> BoxSys
     if disc.refine:
         mesh = mesh.refined(disc.refine)
     t1 = time.perf_counter()
-    mat = as_prony(problem.material)
-    branches = list(zip(mat.G, mat.tau)) if isinstance(mat, PronyMaterial) else []
-    V, rho = problem.loading.speed, problem.layer.density
     ue = ElementVector(ElementTetP2())
     ub = Basis(mesh, ue, intorder=INTORDER)
     pb = Basis(mesh, ElementTetP1(), intorder=INTORDER)
     wb = pb
-    Gg = mat.glassy_modulus
-    A = asm(rf.glassy_stiffness, ub, G=Gg, rho_v2=rho * V * V)
-    B = asm(rf.divergence, ub, pb)
+    S_full, offsets, branches, Gg = assemble_blocks(problem, rf, ub, pb, wb, NC, element_hx(mesh))
     nb = len(branches)
-    nblk = 2 + NC * nb
-    blocks = [[None] * nblk for _ in range(nblk)]
-    blocks[0][0], blocks[0][1], blocks[1][0] = A, -B.T, -B
-    hx = element_hx(mesh)
-    nq = wb.X.shape[1]
-    for b, (Gi, ti) in enumerate(branches):
-        ell = V * ti
-        delta = np.repeat((hx / (2.0 * ell + hx))[:, None], nq, axis=1)
-        Aw = asm(rf.branch_advection, wb, G=Gi, ell=ell, delta=delta)
-        for k in range(NC):
-            j = 2 + NC * b + k
-            blocks[0][j] = asm(rf.branch_stress, wb, ub, G=Gi, comp=k)
-            blocks[j][0] = asm(rf.branch_source, ub, wb, G=Gi, ell=ell, delta=delta, comp=k)
-            blocks[j][j] = Aw
-    sizes = [ub.N, pb.N] + [wb.N] * (NC * nb)
-    offsets = list(np.concatenate([[0], np.cumsum(sizes)]).astype(int))
-    blocks[1][1] = sp.csr_matrix((pb.N, pb.N))
-    S_full = bmat(blocks, "csr")
     dofs_y = ub.get_dofs("sym_y")
     fixed = [np.unique(np.concatenate([ub.get_dofs(name).all()
                                        for name in ("base", "inflow", "outflow")])),

@@ -23,6 +23,8 @@ from __future__ import annotations
 from skfem import BilinearForm, Functional, LinearForm
 from skfem.helpers import ddot, sym_grad
 
+from .forms import area_3d as area, pressure_mass  # mu and p q: the same in every model
+
 __all__ = ["glassy_stiffness", "divergence", "branch_stress", "branch_advection",
            "branch_source", "coupling", "area", "weighted", "pressure_mass", "dissipation",
            "dashpot_power", "rate_power"]
@@ -77,20 +79,9 @@ def coupling(u, mu, w):
 
 
 @LinearForm
-def area(mu, w):
-    """mu (m per unit length in plane strain, m^2 on a 3D surface)."""
-    return mu
-
-
-@LinearForm
 def weighted(mu, w):
     """mu f with f = ``w.f`` at the quadrature points."""
     return mu * w.f
-
-
-@BilinearForm
-def pressure_mass(p, q, w):
-    return p * q
 
 
 @Functional

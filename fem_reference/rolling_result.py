@@ -1,20 +1,29 @@
-"""Result of a steady-rolling (plane-strain) solve."""
+"""Result of a steady-rolling solve (plane strain; the 3D sphere extends it in
+:mod:`.rolling3d_result`)."""
 
 from __future__ import annotations
 
 from dataclasses import asdict, dataclass, field
-from typing import Any, Dict
+from typing import Any, Dict, Optional
 
 import numpy as np
 
 from .result import SolverRecord
 
-__all__ = ["PlaneMeshStats", "RollingResult"]
+__all__ = ["RollingMeshStats", "RollingResult"]
 
 
 @dataclass(frozen=True)
-class PlaneMeshStats:
-    """Size of the plane-strain discretization. Lengths in m."""
+class RollingMeshStats:
+    """Size of a steady-rolling discretization, plane strain or 3D (the half layer).
+    Lengths in m.
+
+    ``internal_dofs`` counts the viscous-strain unknowns (all branches and components),
+    ``upstream`` and ``downstream`` the flow lengths ahead of and behind x = 0,
+    ``far_size`` the largest element size, ``grading`` the growth of the size with the
+    distance from the zone (-), ``lateral`` the half layer's extent in y (None in plane
+    strain: per unit length).
+    """
 
     model: str
     elements: int
@@ -28,7 +37,9 @@ class PlaneMeshStats:
     contact_zone: float
     upstream: float
     downstream: float
+    lateral: Optional[float]
     far_size: float
+    grading: float
 
 
 @dataclass(frozen=True)
@@ -74,7 +85,7 @@ class RollingResult:
         Multiplier nodes x (m) and contact pressure (Pa) along x.
     surface_x, surface_uz : ndarray
         Top-surface vertices x (m) and their vertical displacement u_z (m, up positive).
-    mesh : PlaneMeshStats
+    mesh : RollingMeshStats
     solver : SolverRecord
     fields : dict
         ``mesh``, ``u``, ``p`` and the bases, for export; not compared, not printed.
@@ -94,7 +105,7 @@ class RollingResult:
     pressure: np.ndarray
     surface_x: np.ndarray
     surface_uz: np.ndarray
-    mesh: PlaneMeshStats
+    mesh: RollingMeshStats
     solver: SolverRecord
     fields: Dict[str, Any] = field(default=None, repr=False, compare=False)
 

@@ -26,8 +26,8 @@ from .mesh_plane import plane_mesh
 from .plane_discretization import PlaneDiscretization
 from .problem import ContactProblem
 
-__all__ = ["RollingSystem", "build_rolling_system", "profile", "slope", "element_hx", "restrict",
-           "multiplier_coupling", "diagonal_scale"]
+__all__ = ["RollingSystem", "assemble_blocks", "build_rolling_system", "profile", "slope",
+           "element_hx", "restrict", "multiplier_coupling", "diagonal_scale"]
 
 INTORDER = 4
 #: polynomial order of the continuous viscous-strain fields (1 or 2)
@@ -108,6 +108,18 @@ class RollingSystem:
              for b in range(len(self.branches))]
         return u, p, w
 
+    def dissipation(self, u: np.ndarray, w: list, V: float) -> float:
+        """Power (W/m) dissipated by the dashpots: sum_i int s_i : D eps_v,i / Dt dA, the
+        branch stress 2 G_i (eps - eps_v,i) times the dashpot strain rate -V d eps_v,i /
+        dx, for the fields of :meth:`split` at the speed V (m/s); 0 without branches."""
+        ub, wb = self.ubasis, self.wbasis
+        total = 0.0
+        uf = ub.interpolate(u)
+        for (Gi, ti), (a, c) in zip(self.branches, w):
+            total += rf.dashpot_power.assemble(wb, u=uf, a=wb.interpolate(a), c=wb.interpolate(c),
+                                               G=Gi, tau=ti, V=V)
+        return float(total)
+
 
 def element_hx(mesh) -> np.ndarray:
     """Extent (m) of each element along x (the SUPG length scale)."""
@@ -147,6 +159,40 @@ def diagonal_scale(S: sp.spmatrix, free: np.ndarray, offsets, pbasis, G: float) 
     return diag
 
 
+def assemble_blocks(problem: ContactProblem, forms, ub, pb, wb, n_components: int,
+                    spacing: np.ndarray):
+    """(S_full, offsets, branches, G_g): the monolithic rolling system on [u, p, (w_k,
+    k < ``n_components``) per Maxwell branch] before any boundary condition, with the
+    weak forms of ``forms`` (:mod:`.rolling_forms` or :mod:`.rolling3d_forms`, the same
+    equations with 2 or 5 strain components), the block offsets in the full vector, the
+    branches (G_i Pa, tau_i s) and the glassy modulus (Pa). ``spacing``: the node spacing
+    along x per element (m), the SUPG length: delta = spacing / (2 V tau_i + spacing)."""
+    mat = as_prony(problem.material)
+    branches = list(zip(mat.G, mat.tau)) if isinstance(mat, PronyMaterial) else []
+    V, rho = problem.loading.speed, problem.layer.density
+    Gg = mat.glassy_modulus
+    A = asm(forms.glassy_stiffness, ub, G=Gg, rho_v2=rho * V * V)
+    B = asm(forms.divergence, ub, pb)
+    nb = len(branches)
+    nblk = 2 + n_components * nb
+    blocks = [[None] * nblk for _ in range(nblk)]
+    blocks[0][0], blocks[0][1], blocks[1][0] = A, -B.T, -B
+    nq = wb.X.shape[1]
+    for b, (Gi, ti) in enumerate(branches):
+        ell = V * ti
+        delta = np.repeat((spacing / (2.0 * ell + spacing))[:, None], nq, axis=1)
+        Aw = asm(forms.branch_advection, wb, G=Gi, ell=ell, delta=delta)
+        for k in range(n_components):
+            j = 2 + n_components * b + k
+            blocks[0][j] = asm(forms.branch_stress, wb, ub, G=Gi, comp=k)
+            blocks[j][0] = asm(forms.branch_source, ub, wb, G=Gi, ell=ell, delta=delta, comp=k)
+            blocks[j][j] = Aw
+    sizes = [ub.N, pb.N] + [wb.N] * (n_components * nb)
+    offsets = list(np.concatenate([[0], np.cumsum(sizes)]).astype(int))
+    blocks[1][1] = sp.csr_matrix((pb.N, pb.N))
+    return bmat(blocks, "csr"), offsets, branches, Gg
+
+
 def build_rolling_system(problem: ContactProblem, disc: PlaneDiscretization) -> RollingSystem:
     """Mesh and assemble the plane-strain rolling layer of ``problem`` (module docstring)."""
     t0 = time.perf_counter()
@@ -156,38 +202,13 @@ def build_rolling_system(problem: ContactProblem, disc: PlaneDiscretization) -> 
     if disc.refine:
         mesh = mesh.refined(disc.refine)
     t1 = time.perf_counter()
-    mat = as_prony(problem.material)
-    branches = list(zip(mat.G, mat.tau)) if isinstance(mat, PronyMaterial) else []
-    V, rho = problem.loading.speed, problem.layer.density
     ue = ElementVector(ElementTriP2())
     ub = Basis(mesh, ue, intorder=INTORDER)
     pb = Basis(mesh, ElementTriP1(), intorder=INTORDER)
     wb = Basis(mesh, ElementTriP2() if STRAIN_ORDER == 2 else ElementTriP1(), intorder=INTORDER)
-    Gg = mat.glassy_modulus
-    A = asm(rf.glassy_stiffness, ub, G=Gg, rho_v2=rho * V * V)
-    B = asm(rf.divergence, ub, pb)
+    S_full, offsets, branches, Gg = assemble_blocks(problem, rf, ub, pb, wb, 2,
+                                                    element_hx(mesh) / STRAIN_ORDER)
     nb = len(branches)
-    blocks = [[None] * (2 + 2 * nb) for _ in range(2 + 2 * nb)]
-    blocks[0][0], blocks[0][1], blocks[1][0] = A, -B.T, -B
-    hx = element_hx(mesh)
-    nq = wb.X.shape[1]
-    for k, (Gi, ti) in enumerate(branches):
-        ell = V * ti
-        h_eff = hx / STRAIN_ORDER  # the node spacing along x
-        delta = np.repeat((h_eff / (2.0 * ell + h_eff))[:, None], nq, axis=1)
-        Aw = asm(rf.branch_advection, wb, G=Gi, ell=ell, delta=delta)
-        for comp in (0, 1):
-            j = 2 + 2 * k + comp
-            blocks[0][j] = asm(rf.branch_stress, wb, ub, G=Gi, comp=comp)
-            blocks[j][0] = asm(rf.branch_source, ub, wb, G=Gi, ell=ell, delta=delta, comp=comp)
-            blocks[j][j] = Aw
-    sizes = [ub.N, pb.N] + [wb.N] * (2 * nb)
-    offsets = list(np.concatenate([[0], np.cumsum(sizes)]).astype(int))
-    for i, n in enumerate(sizes):  # bmat needs a shape in every block row and column
-        if all(blk is None for blk in blocks[i]):
-            blocks[i][i] = sp.csr_matrix((n, n))
-    blocks[1][1] = sp.csr_matrix((pb.N, pb.N))
-    S_full = bmat(blocks, "csr")
     fixed_u = np.unique(np.concatenate([ub.get_dofs(name).all()
                                         for name in ("base", "inflow", "outflow")]))
     fixed = [fixed_u]

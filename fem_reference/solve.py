@@ -68,8 +68,8 @@ def _top_vertices(system: LayerSystem, u: np.ndarray):
 def solve(problem: ContactProblem,
           progress: Optional[Callable[[str], None]] = None) -> ContactResult:
     """Solve the frictionless contact of ``problem``: stationary (axisymmetric or 3D),
-    or steady rolling: of a line indenter in plane strain (:mod:`.rolling_solve`), of a
-    sphere in 3D (``fem.model = "3d"`` and ``loading.speed`` > 0, :mod:`.rolling3d_solve`).
+    or steady rolling (:mod:`.rolling_solve`): of a line indenter in plane strain, of a
+    sphere in 3D (``fem.model = "3d"`` and ``loading.speed`` > 0).
 
     Parameters
     ----------
@@ -89,14 +89,10 @@ def solve(problem: ContactProblem,
     InputError, MeshError, LinearSolverError, ContactNotConvergedError, ContactZoneError
         See :mod:`fem_reference.errors`.
     """
-    if problem.fem.model == "plane_strain":
+    if problem.fem.model == "plane_strain" or (problem.fem.model == "3d" and problem.loading.speed > 0):
         from .rolling_solve import solve_rolling
 
         return solve_rolling(problem, progress)
-    if problem.fem.model == "3d" and problem.loading.speed > 0:
-        from .rolling3d_solve import solve_rolling_3d
-
-        return solve_rolling_3d(problem, progress)
     say = progress or (lambda _: None)
     times = {}
     t0 = time.perf_counter()

@@ -175,10 +175,10 @@ def test_pardiso_partial_solve_equals_superlu(coarse, monkeypatch):
     refined full solves) against SuperLU's plain solves on the same mesh: measured 1e-7
     at h = 1 mm on the section 11 case (6.6e-5 before the defect correction)."""
     pytest.importorskip("pypardiso")
-    from fem_reference import rolling3d_solve
+    from fem_reference import rolling_solve
 
     assert coarse.solver.linear_solver == "pardiso"
-    monkeypatch.setattr(rolling3d_solve, "LINEAR_SOLVER", "superlu")
+    monkeypatch.setattr(rolling_solve, "LINEAR_SOLVER", "superlu")
     s = solve(_problem(speed=0.01))
     assert s.solver.linear_solver == "direct"
     assert s.rolling_resistance == pytest.approx(coarse.rolling_resistance, rel=1e-6)
@@ -209,10 +209,10 @@ def test_without_pardiso_a_large_3d_rolling_system_is_refused_by_name(monkeypatc
     """Without Pardiso, SuperLU's 3D fill (3.2 GB at 51k unknowns) would exhaust memory on
     the case's finest level: a system above SUPERLU_LIMIT unknowns is refused before the
     factorization, with what to install or change."""
-    from fem_reference import rolling3d_solve
+    from fem_reference import rolling_solve
     from fem_reference.errors import LinearSolverError
 
-    monkeypatch.setattr(rolling3d_solve, "LINEAR_SOLVER", "superlu")
-    monkeypatch.setattr(rolling3d_solve, "SUPERLU_LIMIT", 1000)
+    monkeypatch.setattr(rolling_solve, "LINEAR_SOLVER", "superlu")
+    monkeypatch.setattr(rolling_solve, "SUPERLU_LIMIT", 1000)
     with pytest.raises(LinearSolverError, match=r"too many for SuperLU in 3D.*pip install pypardiso.*element_size"):
         solve(_problem(speed=0.01))
