@@ -8,8 +8,9 @@ m, ``indentation`` m, ``load`` N, ``peak_pressure`` Pa, ``mesh`` and
 ``pressure_centroid_x``, ``leading_edge``, ``trailing_edge``, ``contact_length`` m,
 ``peak_pressure`` Pa, ``dissipation`` and ``pressure_power`` W/m,
 ``energy_balance``; for a sphere rolling in the 3d model the same in N and W, with
-``lateral_edge`` m and ``peak_memory`` bytes), before any file is written. Output paths are checked before the
-solve. Exit status 0 on success, 2 for bad input, 1 when the solve fails or an
+``lateral_edge`` m and ``peak_memory`` bytes), before any file is written: ``--plot`` a
+figure (:func:`~.output.plot_result`), ``--vtu`` the fields (:func:`~.output.write_vtu`).
+Output paths are checked before the solve. Exit status 0 on success, 2 for bad input, 1 when the solve fails or an
 output could not be written.
 """
 
@@ -32,13 +33,15 @@ def _parser() -> argparse.ArgumentParser:
     ap = argparse.ArgumentParser(prog="fem-reference", description=__doc__.splitlines()[0])
     sub = ap.add_subparsers(dest="command", required=True)
     s = sub.add_parser("solve", help="solve a case file (frictionless: stationary elastic, or "
-                       "steady rolling of a line indenter in plane strain)")
+                       "steady rolling of a line indenter in plane strain or of a sphere in 3d)")
     s.add_argument("case", help="TOML case file (docs/case-files.md)")
     s.add_argument("--json", action="store_true", help="print the result as one JSON object")
     s.add_argument("--set", action="append", default=[], metavar="SECTION.KEY=VALUE",
                    help="override an entry; the value is parsed as TOML")
-    s.add_argument("--plot", metavar="FILE.png", help="pressure profile and deformed surface")
-    s.add_argument("--vtu", metavar="FILE.vtu", help="export the fields (meshio)")
+    s.add_argument("--plot", metavar="FILE.png", help="pressure profile and deformed surface (a "
+                   "rolling sphere: also the pressure map; profiles on y = 0)")
+    s.add_argument("--vtu", metavar="FILE.vtu", help="export the mesh with displacement, pressure "
+                   "and viscous strains (meshio; a rolling sphere: the half layer y >= 0)")
     s.add_argument("--quiet", action="store_true", help="no progress lines on stderr")
     return ap
 
@@ -56,12 +59,6 @@ def main(argv: Optional[List[str]] = None) -> int:
         plot = casefile.check_output(args.plot, (".png", ".pdf", ".svg"), "--plot")
         vtu = casefile.check_output(args.vtu, (".vtu",), "--vtu")
         problem = load_case(args.case, args.set)
-        rolling = problem.fem.model == "plane_strain" or \
-            (problem.fem.model == "3d" and problem.loading.speed > 0)
-        if rolling and (plot or vtu):
-            raise InputError("--plot and --vtu are not available for a rolling case (plane strain or "
-                             "3d sphere) yet; use --json (pressure profile: the Python result's "
-                             "pressure_x, pressure)")
     except (InputError, casefile.CaseFileError) as exc:
         print(f"fem-reference: error: {exc}", file=sys.stderr)
         return 2

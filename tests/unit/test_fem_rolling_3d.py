@@ -187,6 +187,78 @@ def test_pardiso_partial_solve_equals_superlu(coarse, monkeypatch):
     assert np.max(np.abs(s.zone_pressure - coarse.zone_pressure)) < 1e-6 * coarse.peak_pressure
 
 
+def test_vtu_and_plot_of_the_rolling_sphere(coarse, tmp_path):
+    """The VTU of the half layer, read back with meshio, holds the returned fields
+    exactly, and they mean what they say: u_y = 0 on the symmetry plane; on the top line
+    y = 0 inside the fitted edges the vertical displacement follows the sphere, u_z =
+    s(x) - d (measured within 1.26% of d on this coarse mesh, whose mortar contact holds
+    the gap weakly: 3% allowed); the hydrostatic pressure at the top vertex under the
+    peak is compressive, of the order of the contact pressure (measured 0.78 of it).
+    The figure is a PNG of the size asked (7 x 10 in at 120 dpi) with something drawn."""
+    import matplotlib.image
+    import meshio
+
+    from fem_reference.output import plot_result, write_vtu
+
+    r = coarse
+    vtu, png = tmp_path / "sphere.vtu", tmp_path / "sphere.png"
+    write_vtu(r, vtu)
+    plot_result(r, png)
+    m = meshio.read(vtu)
+    mesh, ub, pb, wb = (r.fields[k] for k in ("mesh", "ubasis", "pbasis", "wbasis"))
+    np.testing.assert_array_equal(m.points, mesh.p.T)
+    np.testing.assert_array_equal(m.cells_dict["tetra"], mesh.t.T)
+    u = m.point_data["displacement"]
+    for k in range(3):
+        np.testing.assert_array_equal(u[:, k], r.fields["u"][ub.nodal_dofs[k]])
+    np.testing.assert_array_equal(m.point_data["pressure"], r.fields["p"][pb.nodal_dofs[0]])
+    (comps,) = r.fields["w"]  # one Maxwell branch, five components
+    np.testing.assert_array_equal(m.point_data["viscous_strain_1"],
+                                  np.column_stack([c[wb.nodal_dofs[0]] for c in comps]))
+    pts = m.points
+    assert pts[:, 1].min() == 0.0 and np.all(u[pts[:, 1] == 0.0, 1] == 0.0)
+    line = (pts[:, 2] == H) & (pts[:, 1] == 0.0)
+    inside = line & (pts[:, 0] > r.trailing_edge) & (pts[:, 0] < r.leading_edge)
+    x = pts[inside, 0]
+    assert inside.sum() >= 4
+    s = x * x / (R + np.sqrt(R * R - x * x))
+    assert np.max(np.abs(u[inside, 2] - (s - r.indentation))) < 3e-2 * r.indentation
+    below_peak = np.flatnonzero(line)[np.argmin(np.abs(pts[line, 0] - r.pressure_x[np.argmax(r.pressure)]))]
+    assert 0.5 * r.peak_pressure < m.point_data["pressure"][below_peak] < 1.5 * r.peak_pressure
+    image = matplotlib.image.imread(png)
+    assert image.shape[:2] == (1200, 840) and image[..., :3].std() > 0.05
+
+
+def test_cli_solves_a_rolling_sphere_with_plot_and_vtu(coarse, tmp_path, capsys):
+    """fem-reference solve with fem.model = "3d" and a speed (the 3D FEM through the
+    command line): the same result as the Python call (the coarse fixture, within 1e-9),
+    the text lines name the load and R_r in N, the figure and the half layer's VTU are
+    written."""
+    import json
+
+    import meshio
+
+    from fem_reference.cli import main
+
+    case = tmp_path / "sphere.toml"
+    case.write_text(f'[layer]\nthickness = {H}\ndensity = 1000.0\n[material]\nmodel = "three_parameter"\n'
+                    f'G0 = 3.0e6\ntau = 0.25\nf = 1.0\n[indenter]\nshape = "sphere"\nradius = {R}\n'
+                    f'[loading]\nspeed = 0.01\nload = {P}\n')
+    sets = [f"fem.{k}={v!r}" if not isinstance(v, str) else f'fem.{k}="{v}"' for k, v in COARSE.items()]
+    png, vtu = tmp_path / "s.png", tmp_path / "s.vtu"
+    args = ["solve", str(case), "--quiet", "--plot", str(png), "--vtu", str(vtu)]
+    for item in sets:
+        args += ["--set", item]
+    assert main(args + ["--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["mesh"]["model"] == "3d" and out["mesh"]["lateral"] == COARSE["domain_radius"]
+    assert out["load"] == pytest.approx(P, rel=1e-12)
+    assert out["rolling_resistance"] == pytest.approx(coarse.rolling_resistance, rel=1e-9)
+    assert out["indentation"] == pytest.approx(coarse.indentation, rel=1e-9)
+    assert png.stat().st_size > 0
+    assert len(meshio.read(vtu).points) == out["mesh"]["vertices"] == coarse.mesh.vertices
+
+
 @pytest.mark.slow
 def test_section_11_energy_balance_and_bem():
     """The paper's section 11 case on the finest mesh of benchmarks/fem_rolling_3d.py
