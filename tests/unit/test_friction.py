@@ -251,7 +251,8 @@ def test_matrix_free_product_equals_the_dense_system(kernels, load, indentation,
     np.testing.assert_allclose(system.matvec(x), ref, rtol=0, atol=1e-12 * np.abs(ref).max())
 
 
-def test_line_preconditioner_inverts_a_contact_on_one_grid_row(kernels):
+@pytest.mark.parametrize("split_from", [1, 1000])
+def test_line_preconditioner_inverts_a_contact_on_one_grid_row(kernels, monkeypatch, split_from):
     """With every contact node on one grid row (stick and slip mixed; Omega and d given,
     so no global unknowns) and the layer's normal-tangential coupling blocks set to zero
     (the preconditioner leaves them out), the line preconditioner is the exact inverse:
@@ -259,9 +260,12 @@ def test_line_preconditioner_inverts_a_contact_on_one_grid_row(kernels):
     slip rows are all in the line's block). With the coupling, or on two rows, it is not.
     In double precision the inverse is exact to 1e-9 (|x| ~ 1); stored in single precision
     (the default) to 1e-5 (measured 2.3e-7; double: 9e-16); the same by LU factors (the
-    long lines') as by inverses."""
+    long lines') as by inverses, and by :func:`tangential_inverse` as by one inverse."""
+    from bem.frictional import preconditioner
     from bem.frictional.preconditioner import LinePreconditioner
 
+    # the tangential block by tangential_inverse (x and y rows apart) or by one inverse
+    monkeypatch.setattr(preconditioner, "SPLIT_FROM", split_from)
     Ky, Kx = GRID.shape
     row = (Ky // 2) * Kx + np.arange(Kx // 2 - 6, Kx // 2 + 6)
     two = np.concatenate([row, row + Kx])
@@ -350,3 +354,38 @@ def test_flexible_gmres_solves_to_the_asked_residual():
     np.testing.assert_allclose(x, np.linalg.solve(A, b), rtol=0, atol=1e-9 * np.abs(x).max())
     x, ok, its = fgmres(lambda v: A @ v, b, None, tol=tol, restart=2, maxiter=1)
     assert not ok and its == 2
+
+
+@pytest.mark.parametrize("pattern", ["mixed", "stick", "slip", "one stick", "one slip", "slip ends"])
+def test_tangential_inverse_is_the_inverse_of_the_line_block(kernels, pattern):
+    """:func:`tangential_inverse` (the x and y rows apart, coupled through the slip nodes'
+    Schur complement) against numpy's inverse of the whole ``2 m x 2 m`` block written by
+    ``force_rows``, on a grid row of the layer's kernels (where the uv blocks vanish:
+    checked), random slip directions and slopes; measured 1e-15 relative, 1e-12 allowed."""
+    from bem.frictional.operators import RollingOperators
+    from bem.frictional.preconditioner import tangential_inverse
+    from bem.frictional.system import force_rows
+
+    ops = RollingOperators(GRID, kernels)
+    Ky, Kx = GRID.shape
+    rng = np.random.default_rng(11)
+    m = 1 if pattern.startswith("one") else 17
+    c = (Ky // 2) * Kx + np.arange(Kx // 2 - m // 2, Kx // 2 - m // 2 + m)
+    stick = {"mixed": lambda: rng.random(m) < 0.7, "stick": lambda: np.ones(m, bool),
+             "slip": lambda: np.zeros(m, bool), "one stick": lambda: np.ones(1, bool),
+             "one slip": lambda: np.zeros(1, bool),
+             "slip ends": lambda: np.r_[False, np.ones(m - 2, bool), False]}[pattern]()
+    p = int((~stick).sum())
+    ang = rng.uniform(0, 2 * np.pi, p)
+    ex, ey, k = np.cos(ang), np.sin(ang), rng.uniform(0.0, 0.5, p)
+    ax = GRID.spacing_x
+    Dx = ax * np.hstack([ops.dense("duu", c, c), ops.dense("duv", c, c)])
+    Dy = ax * np.hstack([ops.dense("dvu", c, c), ops.dense("dvv", c, c)])
+    assert not Dx[:, m:].any() and not Dy[:, :m].any()
+    eye, zero = np.eye(2 * m), np.zeros((m, 2 * m))
+    T = force_rows(stick, ex, ey, k, 0.3, ops.diagonal, zero, Dx, Dy, zero, eye[:m], eye[m:])[m:]
+    ref = np.linalg.inv(T)
+    got = tangential_inverse(Dx[:, :m], Dy[:, m:], stick, ex, ey, k, ops.diagonal)
+    assert got.shape == (2 * m, 2 * m)
+    assert np.abs(got - ref).max() < 1e-12 * np.abs(ref).max()
+    assert np.abs(got @ T - np.eye(2 * m)).max() < 1e-12
