@@ -135,3 +135,19 @@ def test_cli_rolls_a_line_case(tmp_path, capsys):
     assert "shear-wave speed c_s = sqrt(G_inf / rho)" in capsys.readouterr().err
     assert main(["solve", str(case), "--quiet", "--set", "fem.upstream=1e-3"]) == 2
     assert "raise fem.upstream" in capsys.readouterr().err
+
+
+def test_contact_wider_than_the_candidate_zone_is_an_error_naming_it():
+    """A candidate zone narrower than the contact (|x| <= 0.8 mm against a contact about
+    2.3 mm long) stops the rolling solve with the zone, the node that reached it and the
+    setting to raise, instead of a contact cut off at the zone's edge; the node named lies
+    within the fit's room ((fit_nodes + 1/2) h = 0.35 mm) of the zone's edge."""
+    import re
+
+    with pytest.raises(fr.ContactZoneError, match=r"the contact reaches the edge of the candidate zone "
+                       r"\(\|x\| <= 8.0000e-04 m\): a contact node at (\S+) m, less than 3.500e-04 m "
+                       r"inside; raise fem.contact_zone or lower the load") as info:
+        fr.solve(_problem(fr.ThreeParameterMaterial(G0, TAU, F), 0.01,
+                          fr.FemSettings(element_size=1.0e-4, contact_zone=0.8e-3)))
+    node = float(re.search(r"a contact node at (\S+) m", str(info.value)).group(1))
+    assert 0.8e-3 - 3.5e-4 < node <= 0.8e-3
