@@ -126,8 +126,10 @@ class FemSettings:
         Default: "plane_strain" for a line indenter, "axisymmetric" otherwise.
     element_size : float, optional
         Element size h_c (m) in the candidate contact zone. Default: axisymmetric
-        min(a_est / 24, H / 4), 3D min(a_est / 8, H / 2), plane strain
-        min(a_est / 30, H / 8), with a_est the estimated contact radius (half-width).
+        min(a_est / 24, H / 4), 3D min(a_est / 8, H / 2) (3D rolling min(a_est / 10,
+        H / 5): on the section 11 sphere 46k unknowns, 19 s, R_r 1.9% below the BEM;
+        ``fem-reference solve --help``), plane strain min(a_est / 30, H / 8), with
+        a_est the estimated contact radius (half-width).
     contact_zone : float, optional
         Radius (m) of the refined candidate zone of the top surface that carries the
         contact multiplier (plane strain: half-width, |x| <= contact_zone). Default
