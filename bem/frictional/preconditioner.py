@@ -22,8 +22,9 @@ kernels are odd in ``y``), so lines of :data:`SPLIT_FROM` nodes or more invert t
 tangential block by :func:`tangential_inverse`: two ``s x s`` inverses (``s`` stick nodes)
 and a Schur complement on the slip nodes instead of one ``2 m x 2 m`` inverse (section 11
 at 257 x 257: the fine grid's inversions 4.9 -> 3.2 s CPU). A line whose nodes and stick pattern did not change
-since the previous active-set iteration keeps its inverses (the slip directions they
-were built with lag by one iteration; it is only a preconditioner).
+since the previous active-set iteration keeps its inverses unless one of its slip
+directions turned by more than :data:`TURN` since they were built (the kept blocks' slip
+law lags; it is only a preconditioner, but a stale one cost 15 % more GMRES iterations).
 """
 
 from __future__ import annotations
@@ -49,6 +50,13 @@ LU_FROM = 256
 #: 80 % stick, one thread: 0.59x as fast at 64 nodes (numpy's call overhead), 1.25x at
 #: 96, 1.5x at 128-160, 1.9x at 215, 2.2x at 256
 SPLIT_FROM = 96
+#: a line whose nodes and stick pattern repeat keeps its blocks unless one of its slip
+#: directions turned by more than this (rad) since they were built. Measured (GMRES
+#: iterations in all, never refreshed -> 0.2 rad): issue-11 case 61 x 61 190 -> 176,
+#: section 11 129 x 129 265 -> 225, 257 x 257 379 -> 328 (CPU 22.1 -> 18.9 s, loaded
+#: machine); 0.5 rad 334 at 257, 0.1 rad as 0.2; also refreshing on a slope changed 4x:
+#: no change
+TURN = 0.2
 
 
 class LinePreconditioner:
@@ -74,8 +82,10 @@ class LinePreconditioner:
     (the same iteration counts were measured in double and single precision).
     """
 
-    def __init__(self, pad: int = 8, dtype=np.float32, lu_from: int | None = None):
+    def __init__(self, pad: int = 8, dtype=np.float32, lu_from: int | None = None, turn: float = TURN):
         self._cache: dict = {}
+        self._built: dict = {}
+        self.turn = turn
         self._batches: tuple = (None, None)
         self.factorised = 0
         self.pad = pad
@@ -90,16 +100,24 @@ class LinePreconditioner:
         lines = np.split(np.arange(nC), cuts)
         slip_pos = np.full(nC, -1)
         slip_pos[system.B] = np.arange(system.B.size)
-        cache, groups, keys, long_lines = {}, {}, [], []
+        cache, groups, keys, long_lines, built = {}, {}, [], [], {}
+        refreshed = False
         for J in lines:
             st = system.stick[J]
             key = system.C[J].tobytes() + st.tobytes()
             keys.append(key)
             lu = J.size >= self.lu_from
             pair = self._cache.get(key)
+            p = slip_pos[J[~st]]
+            law = (system.dir_x[p], system.dir_y[p], system.slope[p])
+            if pair is not None and _turned(self._built[key], law, self.turn):
+                pair, refreshed = None, True
             if pair is None:
                 pair = self._inverses(system, J, st, slip_pos, self.dtype if lu else None)
                 self.factorised += 1
+                built[key] = law
+            else:
+                built[key] = self._built[key]
             cache[key] = pair
             if lu:
                 long_lines.append((J, np.concatenate([nC + J, 2 * nC + J]), pair))
@@ -107,7 +125,7 @@ class LinePreconditioner:
             size = -(-J.size // self.pad) * self.pad
             groups.setdefault(size, []).append((J, key, pair))
         whole = b"|".join(keys)
-        batches = self._batches[1] if self._batches[0] == whole else []
+        batches = self._batches[1] if self._batches[0] == whole and not refreshed else []
         for size, members in (groups.items() if not batches else ()):
             L = len(members)
             idx_n, idx_t = np.full((L, size), n), np.full((L, 2 * size), n)  # padding: slot n
@@ -120,7 +138,7 @@ class LinePreconditioner:
                 inv_n[b, :m, :m], inv_t[b, :2 * m, :2 * m], coup[b, :m] = a_n, a_t, c
                 cache[key] = (inv_n[b, :m, :m], inv_t[b, :2 * m, :2 * m], coup[b, :m])  # views: one copy
             batches.append((idx_n, idx_t, inv_n, inv_t, coup))
-        self._cache = cache
+        self._cache, self._built = cache, built
         self._batches = (whole, batches)
         om_step = 1.0 / system.ax  # the inverse of the scaled Omega's stick-row coefficient
         ext = np.zeros(n + 1, self.dtype)
@@ -180,6 +198,16 @@ class LinePreconditioner:
                 raise np.linalg.LinAlgError(f"singular line block of {m} contact nodes (getrf info {info})")
             factors.append((lu, piv))
         return factors[0], factors[1], coup.astype(lu_dtype)
+
+
+def _turned(old, new, turn: float) -> bool:
+    """Whether a slip direction of a line turned by more than ``turn`` (rad) since its
+    blocks were built (``old``, ``new``: the slip nodes' ``dir_x, dir_y, slope``)."""
+    if not np.isfinite(turn) or old[0].size == 0:
+        return False
+    cross = old[0] * new[1] - old[1] * new[0]
+    dot = old[0] * new[0] + old[1] * new[1]
+    return bool(np.abs(np.arctan2(cross, dot)).max() > turn)
 
 
 def _row_coupled(ops) -> bool:

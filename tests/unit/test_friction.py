@@ -389,3 +389,43 @@ def test_tangential_inverse_is_the_inverse_of_the_line_block(kernels, pattern):
     assert got.shape == (2 * m, 2 * m)
     assert np.abs(got - ref).max() < 1e-12 * np.abs(ref).max()
     assert np.abs(got @ T - np.eye(2 * m)).max() < 1e-12
+
+
+def test_line_preconditioner_refreshes_a_line_whose_slip_direction_turned(kernels):
+    """Same sets, one slip node's direction turned: by 0.1 rad (below ``TURN``, 0.2) the
+    line keeps its blocks, built with the old direction (so the product is no longer the
+    exact inverse of the new blocks); by 0.3 rad only that line is inverted again and the
+    product is again the exact inverse of the new system's line blocks (uncoupled kernels,
+    contact on one grid row, as above)."""
+    from bem.frictional import SetState, SetSystem
+    from bem.frictional.preconditioner import TURN, LinePreconditioner
+
+    assert TURN == 0.2
+    Ky, Kx = GRID.shape
+    row = (Ky // 2) * Kx + np.arange(Kx // 2 - 6, Kx // 2 + 6)
+    uncoupled = {b: (np.zeros_like(k) if b in ("wu", "wv", "uw", "vw") else k) for b, k in kernels.items()}
+    first, _ = _system(uncoupled, None, 1e-4, 2.4, contact=row)
+    pre = LinePreconditioner(dtype=np.float64)
+    pre.attach(first)
+    assert pre.factorised == 1
+    size = Kx * Ky
+    contact, stick = np.zeros(size, bool), np.zeros(size, bool)
+    contact[first.C] = True
+    stick[first.C[first.A]] = True
+    node = first.C[first.B[0]]
+    e0 = np.zeros((size, 2))
+    e0[first.C[first.B]] = np.stack([first.dir_x, first.dir_y], 1)
+    k = np.zeros(size)
+    k[first.C[first.B]] = first.slope * V / first.ax
+    x = np.random.default_rng(3).normal(size=first.n)
+    for angle, refreshed in ((0.1, False), (0.3, True)):
+        c, s = np.cos(angle), np.sin(angle)
+        e = e0.copy()
+        e[node] = [c * e0[node, 0] - s * e0[node, 1], s * e0[node, 0] + c * e0[node, 1]]
+        turned = SetSystem(first.setup, SetState(contact=contact, stick=stick, direction=e, slope=k))
+        np.testing.assert_allclose(turned.slope, first.slope, rtol=1e-14)
+        before = pre.factorised
+        pre.attach(turned)
+        assert pre.factorised == before + refreshed
+        err = np.abs(turned.precondition(turned.matvec(x)) - x).max()
+        assert (err < 1e-9) if refreshed else (err > 1e-6), (angle, err)
