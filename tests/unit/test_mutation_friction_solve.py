@@ -183,7 +183,11 @@ def test_energy_figure_and_progress_lines(kernels):
     friction = Friction(0.3, "omega", omega=0.99 * V / R)
     p = problem(Paraboloid(R))
     lines = []
+    import time
+    t0 = time.perf_counter()
     res, timings = solve_friction(p, friction, progress=lines.append)
+    wall = time.perf_counter() - t0
+    assert sum(timings.values()) <= wall
     pv = viscous_dissipation(GRID, LAYER, V, -res.force, res.force_x, res.force_y)
     assert res.rolling_resistance_energy == pytest.approx((pv + res.friction_power) / V, rel=1e-12)
     # the two figures differ by the discretisation error: 6.2 % measured on 67 contact nodes
@@ -238,6 +242,15 @@ def test_zero_friction_returns_the_frictionless_contact(kernels, friction):
         assert math.isnan(res.omega)
     else:
         assert res.omega == friction.omega
+    # the slip velocity V (1 + du/dx) - Omega l on the contact, with Omega = 0 where it is
+    # free (undefined without friction): every node slips, S = 0, no friction power
+    K = kernels
+    dux = -_apply(GRID, upwind_table(K["uw"], GRID.spacing_x), res.force)
+    ell = rolling_radius(Sphere(R), GRID.coordinates()[1])
+    om = 0.0 if friction.omega is None else friction.omega
+    on = res.force > 0
+    np.testing.assert_allclose(res.slip_x[on], (V * (1 + dux) - om * ell)[on], rtol=0, atol=1e-12 * V)
+    assert not res.slip_x[~on].any() and res.friction_power == 0.0
     r = res.record
     assert (r.iterations, r.history, r.linear_solver, r.linear_iterations) == (0, (), "dense", 0)
     assert (r.gap_residual, r.stick_residual, r.coulomb_residual) == (0.0, 0.0, 0.0)
@@ -343,7 +356,7 @@ def test_a_failed_direct_solve_continues_in_mu_unless_omega_is_given(kernels, mo
     calls = []
 
     def continuation(setup, friction, N0, solves, progress, cause):
-        calls.append((friction, cause, N0.sum(), setup.mu))
+        calls.append((friction, cause, N0.sum(), setup.mu, progress))
         raise RuntimeError("continued")
 
     monkeypatch.setattr(fs, "run_active_set", fails)
@@ -354,9 +367,11 @@ def test_a_failed_direct_solve_continues_in_mu_unless_omega_is_given(kernels, mo
             solve_friction(problem(), friction, kernels=kernels, energy=False)
         assert not calls
     else:
+        lines = []
         with pytest.raises(RuntimeError, match="continued"):
-            solve_friction(problem(), friction, kernels=kernels, energy=False)
-        (f, cause, load, mu), = calls
+            solve_friction(problem(), friction, kernels=kernels, energy=False, progress=lines.append)
+        (f, cause, load, mu, progress), = calls
+        assert progress == lines.append
         assert f is friction and str(cause) == "planted" and load == pytest.approx(20.0) and mu == 0.3
 
 
@@ -563,3 +578,96 @@ def test_active_set_result_against_its_definitions(kernels):
     np.testing.assert_allclose(np.hypot(e[:, 0], e[:, 1]), 1.0, rtol=1e-12)
     assert not out.state.direction[~slip].any() and not out.state.slope[~slip].any()
     assert (out.state.slope[slip] > 0).all()
+
+
+def test_residuals_of_a_state_off_the_solution(kernels, monkeypatch):
+    """The record's residuals are measured on what is returned: with the active set's
+    result disturbed (one slip force turned by 0.1 rad at its magnitude, one stick force
+    scaled by 1.5, an off-contact node penetrating by 1e-9 d) each residual is the one
+    recomputed here from the returned forces and gap."""
+    import dataclasses
+
+    import bem.frictional.solve as fs
+
+    real = fs.run_active_set
+
+    def disturbed(*args, **kw):
+        out = real(*args, **kw)
+        st = out.state
+        Sx, Sy, gap = out.Sx.copy(), out.Sy.copy(), out.gap.copy()
+        slip = np.flatnonzero(st.contact & ~st.stick)
+        j = slip[np.argmax(np.hypot(Sx, Sy)[slip])]
+        c, s_ = math.cos(0.1), math.sin(0.1)
+        Sx[j], Sy[j] = c * Sx[j] - s_ * Sy[j], s_ * Sx[j] + c * Sy[j]
+        k = np.flatnonzero(st.stick)[0]
+        Sx[k] *= 1.5
+        off = np.flatnonzero(np.isfinite(gap) & ~st.contact)[0]
+        gap[off] = -1e-9 * out.scale
+        return dataclasses.replace(out, Sx=Sx, Sy=Sy, gap=gap)
+
+    monkeypatch.setattr(fs, "run_active_set", disturbed)
+    friction = Friction(0.3, "omega", omega=0.99 * V / R)
+    res, _ = solve_friction(problem(), friction, kernels=kernels, energy=False)
+    K, ax = kernels, GRID.spacing_x
+    N, Sx, Sy = res.force, res.force_x, res.force_y
+    dux = (-_apply(GRID, upwind_table(K["uw"], ax), N) + _apply(GRID, upwind_table(K["uu"], ax), Sx)
+           + _apply(GRID, upwind_table(K["uv"], ax), Sy))
+    dvx = (-_apply(GRID, upwind_table(K["vw"], ax), N) + _apply(GRID, upwind_table(K["vu"], ax), Sx)
+           + _apply(GRID, upwind_table(K["vv"], ax), Sy))
+    ell = rolling_radius(Sphere(R), GRID.coordinates()[1])
+    wx, wy = V * (1 + dux) - friction.omega * ell, V * dvx
+    st, sl = res.stick, res.contact & ~res.stick
+    stick_res = np.hypot(wx, wy)[st].max() / V
+    smag, wmag = np.hypot(Sx, Sy), np.hypot(wx, wy)
+    cone = np.maximum(smag[st] / (0.3 * N[st]) - 1, 0).max()
+    mag = np.abs(smag[sl] / (0.3 * N[sl]) - 1).max()
+    ang = (1 - (Sx * wx + Sy * wy)[sl] / (smag * wmag)[sl]).max()
+    r = res.record
+    assert r.gap_residual == pytest.approx(1e-9, rel=1e-9)
+    assert r.stick_residual == pytest.approx(stick_res, rel=1e-6) and stick_res > 1e-4
+    assert r.coulomb_residual == pytest.approx(max(cone, mag, ang), rel=1e-6)
+    assert ang > 1e-3  # the direction misfit shows (1.68 measured: the slip velocities move too)
+
+
+def test_displacement_control_with_a_coarse_start(big_kernels):
+    """d given on the 25 x 25 grid: the coarse level solves under displacement control too."""
+    friction = Friction(0.3, "towed")
+    p = problem(grid=BIG, indentation=1.0e-4)
+    lines = []
+    res, _ = solve_friction(p, friction, kernels=big_kernels, energy=False, progress=lines.append)
+    check_result(res, p, friction, big_kernels)
+    assert any(ln.startswith("coarse 13 x 13: friction 1: ") for ln in lines)
+
+
+def test_unreachable_loading_message_from_the_frictionless_forces(kernels):
+    """Pushed at the top at mu = 1e-3: |sum R arm N0| asked, mu sum |R + l| N0 available,
+    from the frictionless forces N0 (N m)."""
+    p = problem()
+    X, Y = GRID.coordinates()
+    N0 = solve_normal(ComplianceOperator(GRID, kernels["ww"]), Sphere(R).profile(X, Y), load=20.0).force
+    need = abs(float((R * Sphere(R).rolling_arm(X, Y) * N0).sum()))
+    can = 1e-3 * float((np.abs(R + rolling_radius(Sphere(R), Y)) * N0).sum())
+    with pytest.raises(LoadingUnreachable) as info:
+        solve_friction(p, Friction(1e-3), kernels=kernels, energy=False)
+    assert str(info.value) == (
+        f"mode 'pushed_at_top' needs tangential forces beyond the friction limit: mu = 0.001 can give a "
+        f"moment/force of {can:.4g}, the rolling resistance asks for {need:.4g} (in units of N m); raise mu "
+        "or use mode 'towed' or 'omega'")
+
+
+def test_height_map_indenter_with_a_friction_radius(kernels):
+    """A sphere given as a height map (a table of its profile, 0.25 mm steps): its arm is
+    the table's slope dh/dx at (x, y), its l(y) the friction radius; the result is checked
+    field by field against those."""
+    from bem.indenters import HeightMap
+
+    x = np.arange(-8e-3, 8e-3 + 1e-12, 0.25e-3)
+    Xt, Yt = np.meshgrid(x, x)
+    hm = HeightMap(x, x, Sphere(R).profile(Xt, Yt))
+    friction = Friction(0.3, "towed", radius=R)
+    p = problem(hm)
+    res, _ = solve_friction(p, friction, kernels=kernels, energy=False)
+    check_result(res, p, friction, kernels)
+    X, Y = GRID.coordinates()
+    Q = float((res.force * hm.rolling_arm(X, Y)).sum() + res.force_x.sum())
+    assert res.driving_force == pytest.approx(Q, rel=1e-12)

@@ -420,10 +420,11 @@ def test_continuation_ladder_starts_and_history(monkeypatch, mu, ladder):
     from bem.frictional import starts
     from bem.frictional.active_set import ActiveSetResult
 
-    calls = []
+    calls, progresses = [], []
 
     def fake(setup, friction, state, solves, progress):
         calls.append((setup.mu, friction.mu, friction.mode, state, solves))
+        progresses.append(progress)
         marker = types.SimpleNamespace(mu=friction.mu)
         return ActiveSetResult(N=np.full(4, friction.mu), Sx=None, Sy=None, indentation=0.0, omega=0.0,
                                state=marker, history=[(len(calls), friction.mu)], gap=None, scale=1.0)
@@ -445,6 +446,7 @@ def test_continuation_ladder_starts_and_history(monkeypatch, mu, ladder):
     assert out.history == [(i + 1, m) for i, m in enumerate(c[1] for c in calls)]
     assert out.N[0] == calls[-1][1] and out.state.mu == calls[-1][1]
     assert lines == [f"friction: direct solve failed (x); continuation in mu from {ladder[0]:.4g}"]
+    assert progresses == [lines.append] * len(ladder)  # each rung reports its iterations
     starts.continuation(_fake_setup(), Friction(mu, "towed"), N0, solves, None, RuntimeError("x"))  # quiet
 
 
