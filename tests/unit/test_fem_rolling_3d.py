@@ -124,10 +124,16 @@ def test_master_curve_table_is_refused_for_the_3d_rolling_model():
         problem_from_dict(data)
 
 
+#: the progress lines of the coarse fixture's solve
+PROGRESS = []
+
+
 @pytest.fixture(scope="module")
 def coarse():
-    """The section 11 layer at V = 0.01 m/s on the coarse mesh."""
-    return solve(_problem(speed=0.01))
+    """The section 11 layer at V = 0.01 m/s on the coarse mesh (its progress lines in
+    ``PROGRESS``)."""
+    PROGRESS.clear()
+    return solve(_problem(speed=0.01), PROGRESS.append)
 
 
 def test_result_sums_and_fields(coarse):
@@ -154,6 +160,10 @@ def test_result_sums_and_fields(coarse):
     # the energy balance holds to the coarse mesh's error (measured +7.4% here; -0.02% on
     # the 154k-unknown mesh of the section 11 case, BENCHMARKS.md)
     assert abs(r.energy_balance) < 0.15
+    # the caller's progress hears every stage, the last with the returned R_r
+    assert PROGRESS[0].startswith("3d rolling: meshing the half box (h = 1.500e-03 m")
+    assert any(line.startswith("contact iteration") for line in PROGRESS)
+    assert PROGRESS[-1].startswith(f"done: R_r {r.rolling_resistance:.6e} N (D/V ")
 
 
 def test_elastic_layer_rolls_without_resistance_like_the_stationary_model():
