@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import os
 from concurrent.futures import ThreadPoolExecutor
+from dataclasses import dataclass
 
 import numpy as np
 import scipy.fft as sfft
@@ -47,6 +48,38 @@ def _check_blocks(blocks) -> tuple[str, ...]:
     return blocks
 
 
+@dataclass(frozen=True)
+class _Modes:
+    """The truncated Fourier modes ``0 <= m <= N_tx``, ``0 <= n <= N_ty`` of a grid: wave
+    numbers ``nu_x, nu_y`` (rad/m), moduli ``G`` (Pa, complex) at ``omega_m = -nu_x V``,
+    sinc weights over the periods ``wx, wy`` (1/m), spacing over period ``rx, ry`` (-)."""
+
+    m: np.ndarray
+    n: np.ndarray
+    nu_x: np.ndarray
+    nu_y: np.ndarray
+    G: np.ndarray
+    wx: np.ndarray
+    wy: np.ndarray
+    rx: float
+    ry: float
+
+
+def _modes(grid: Grid, layer: Layer, speed: float) -> _Modes:
+    g = grid
+    rx, ry = g.spacing_x / g.period_x, g.spacing_y / g.period_y
+    m, n = np.arange(g.truncation_x + 1), np.arange(g.truncation_y + 1)
+    nu_x = 2 * np.pi * m / g.period_x
+    return _Modes(m=m, n=n, nu_x=nu_x, nu_y=2 * np.pi * n / g.period_y, G=_moduli(layer, nu_x, speed),
+                  wx=np.sinc(m * rx) / g.period_x, wy=np.sinc(n * ry) / g.period_y, rx=rx, ry=ry)
+
+
+def _in_batches(rows: int, work) -> None:
+    """``work(start)`` for every batch of :data:`_CHUNK` rows of ``m``, on two threads."""
+    with ThreadPoolExecutor(max_workers=min(2, os.cpu_count() or 1)) as pool:
+        list(pool.map(work, range(0, rows, _CHUNK)))
+
+
 def mode_symbols(grid: Grid, layer: Layer, speed: float, blocks=("ww",)) -> dict:
     """Fourier weights ``g_PQ(m, n)`` for ``0 <= m <= N_tx``, ``0 <= n <= N_ty``.
 
@@ -54,25 +87,17 @@ def mode_symbols(grid: Grid, layer: Layer, speed: float, blocks=("ww",)) -> dict
     ``speed`` is ``V`` (m/s).
     """
     blocks = _check_blocks(blocks)
-    g = grid
-    m = np.arange(g.truncation_x + 1)
-    n = np.arange(g.truncation_y + 1)
-    nu_x = 2 * np.pi * m / g.period_x
-    nu_y = 2 * np.pi * n / g.period_y
-    G = _moduli(layer, nu_x, speed)
-    weight = np.outer(np.sinc(m * g.spacing_x / g.period_x), np.sinc(n * g.spacing_y / g.period_y))
-    weight /= g.period_x * g.period_y
+    md = _modes(grid, layer, speed)
+    weight = np.outer(md.wx, md.wy)
     rho_V2 = layer.inertia(speed)
-    out = {b: np.empty((m.size, n.size), dtype=complex) for b in blocks}
+    out = {b: np.empty((md.m.size, md.n.size), dtype=complex) for b in blocks}
 
     def work(start: int) -> None:
-        s = slice(start, min(start + _CHUNK, m.size))
-        for b, sym in _symbol_rows(layer, nu_x[s], nu_y, G[s], rho_V2, weight[s], blocks).items():
+        s = slice(start, min(start + _CHUNK, md.m.size))
+        for b, sym in _symbol_rows(layer, md.nu_x[s], md.nu_y, md.G[s], rho_V2, weight[s], blocks).items():
             out[b][s] = sym
 
-    starts = range(0, m.size, _CHUNK)
-    with ThreadPoolExecutor(max_workers=min(2, os.cpu_count() or 1)) as pool:
-        list(pool.map(work, starts))
+    _in_batches(md.m.size, work)
     return out
 
 
@@ -90,25 +115,20 @@ def _kernels_streamed(grid: Grid, layer: Layer, speed: float, blocks: tuple) -> 
     batch's symbols are summed over ``n`` at once, so only ``(N_tx + 1) x (2 K_y - 1)``
     partial sums a block are kept, not every mode's symbol (at 513 x 513 nodes, ``N_t =
     4924``, 9 x 0.39 GB of symbols). The same sums, in the same order."""
-    g = grid
-    Kx, Ky = g.nodes_x, g.nodes_y
+    Kx, Ky = grid.nodes_x, grid.nodes_y
     chirp = max(Kx, Ky) > _MATMUL_NODES
-    rx, ry = g.spacing_x / g.period_x, g.spacing_y / g.period_y
-    m, n = np.arange(g.truncation_x + 1), np.arange(g.truncation_y + 1)
-    nu_x, nu_y = 2 * np.pi * m / g.period_x, 2 * np.pi * n / g.period_y
-    G = _moduli(layer, nu_x, speed)
-    wx, wy = np.sinc(m * rx) / g.period_x, np.sinc(n * ry) / g.period_y
+    md = _modes(grid, layer, speed)
     rho_V2 = layer.inertia(speed)
-    H = {b: np.empty((m.size, 2 * Ky - 1), dtype=complex) for b in blocks}
+    H = {b: np.empty((md.m.size, 2 * Ky - 1), dtype=complex) for b in blocks}
 
     def work(start: int) -> None:
-        s = slice(start, min(start + _CHUNK, m.size))
-        for b, sym in _symbol_rows(layer, nu_x[s], nu_y, G[s], rho_V2, np.outer(wx[s], wy), blocks).items():
-            H[b][s] = _over_n(sym, b in _ODD_IN_NY, ry, Ky, chirp)
+        s = slice(start, min(start + _CHUNK, md.m.size))
+        weight = np.outer(md.wx[s], md.wy)
+        for b, sym in _symbol_rows(layer, md.nu_x[s], md.nu_y, md.G[s], rho_V2, weight, blocks).items():
+            H[b][s] = _over_n(sym, b in _ODD_IN_NY, md.ry, Ky, chirp)
 
-    with ThreadPoolExecutor(max_workers=min(2, os.cpu_count() or 1)) as pool:
-        list(pool.map(work, range(0, m.size, _CHUNK)))
-    return {b: _over_m(H.pop(b), rx, Kx, chirp) for b in blocks}
+    _in_batches(md.m.size, work)
+    return {b: _over_m(H.pop(b), md.rx, Kx, chirp) for b in blocks}
 
 
 def _moduli(layer: Layer, nu_x: np.ndarray, speed: float) -> np.ndarray:
@@ -275,13 +295,9 @@ def _kernels_halfspace_split(grid: Grid, layer: Layer, speed: float, blocks: tup
     g = grid
     Kx, Ky = g.nodes_x, g.nodes_y
     chirp = max(Kx, Ky) > _MATMUL_NODES
-    rx, ry = g.spacing_x / g.period_x, g.spacing_y / g.period_y
-    m, n = np.arange(g.truncation_x + 1), np.arange(g.truncation_y + 1)
-    nu_x, nu_y = 2 * np.pi * m / g.period_x, 2 * np.pi * n / g.period_y
-    G = _moduli(layer, nu_x, speed)
+    md = _modes(grid, layer, speed)
+    m, n, nu_x, nu_y, G, wx, wy, rx, ry = md.m, md.n, md.nu_x, md.nu_y, md.G, md.wx, md.wy, md.rx, md.ry
     inv_G = 1.0 / G
-    wx = np.sinc(m * rx) / g.period_x
-    wy = np.sinc(n * ry) / g.period_y
     need = {"ww": ("ww", "vv"), "uu": ("uu", "vv"), "uv": ("uv", "vu")}
     parts = [b for b in ("ww", "uu", "uv") if any(t in blocks for t in need[b])]
     H = {b: np.empty((m.size, 2 * Ky - 1), dtype=complex) for b in parts}
@@ -293,8 +309,7 @@ def _kernels_halfspace_split(grid: Grid, layer: Layer, speed: float, blocks: tup
         for b in parts:
             H[b][s] = _over_n(sym[b] * weight, b in _ODD_IN_NY, ry, Ky, chirp) * inv_G[s, None]
 
-    with ThreadPoolExecutor(max_workers=min(2, os.cpu_count() or 1)) as pool:
-        list(pool.map(work, range(0, m.size, _CHUNK)))
+    _in_batches(m.size, work)
     half = {b: _over_m(H[b], rx, Kx, chirp) for b in parts}
     del H
     if "vv" in blocks:
