@@ -34,7 +34,7 @@ from .linear import LinearSolver
 from .operator import ComplianceOperator
 
 __all__ = [
-    "ContactError", "ContactNotConverged", "ContactAtEdge", "SolveRecord", "NormalContact",
+    "ContactError", "ContactNotConverged", "ContactAtEdge", "SolveRecord", "ContactFigures", "NormalContact",
     "solve_normal", "grid_summary", "pressure_centroid_x", "SHARED_SCALARS", "NormalSystem", "coarse_grid",
     "edge_nodes",
 ]
@@ -66,8 +66,46 @@ class SolveRecord:
     residual: float
 
 
+class ContactFigures:
+    """The figures of a contact result computed from its ``grid`` and its compressive nodal
+    forces ``force`` (N): pressure, contact set, area, equivalent radius, peak pressure
+    and the centre of pressure (shared by :class:`NormalContact` and
+    :class:`bem.friction.FrictionalContact`)."""
+
+    @property
+    def pressure(self) -> np.ndarray:
+        """Nodal pressure ``force / (a_x a_y)`` (Pa)."""
+        return self.force / self.grid.cell_area
+
+    @property
+    def contact(self) -> np.ndarray:
+        """Nodes in contact (``force > 0``)."""
+        return self.force > 0
+
+    @property
+    def contact_area(self) -> float:
+        """Area of the contact patches, ``a_x a_y`` per contact node (m^2)."""
+        return float(self.contact.sum()) * self.grid.cell_area
+
+    @property
+    def contact_radius(self) -> float:
+        """Equivalent radius ``sqrt(area / pi)`` (m): the radius of the disc of the same
+        area, which moves smoothly with the load instead of by whole node spacings."""
+        return math.sqrt(self.contact_area / math.pi)
+
+    @property
+    def peak_pressure(self) -> float:
+        """Largest nodal pressure (Pa)."""
+        return float(self.pressure.max())
+
+    @property
+    def pressure_centroid_x(self) -> float:
+        """``x`` of the resultant normal force (m); ``> 0`` means shifted to the leading edge."""
+        return pressure_centroid_x(self.grid, self.force)
+
+
 @dataclass(frozen=True)
-class NormalContact:
+class NormalContact(ContactFigures):
     """Result of a frictionless contact solve; fields are ``(K_y, K_x)`` arrays.
 
     Attributes
@@ -96,37 +134,6 @@ class NormalContact:
     load: float
     rolling_resistance: float
     record: SolveRecord
-
-    @property
-    def pressure(self) -> np.ndarray:
-        """Nodal pressure ``F / (a_x a_y)`` (Pa)."""
-        return self.force / self.grid.cell_area
-
-    @property
-    def contact(self) -> np.ndarray:
-        """Nodes in contact (``F > 0``)."""
-        return self.force > 0
-
-    @property
-    def contact_area(self) -> float:
-        """Area of the contact patches, ``a_x a_y`` per contact node (m^2)."""
-        return float(self.contact.sum()) * self.grid.cell_area
-
-    @property
-    def contact_radius(self) -> float:
-        """Equivalent radius ``sqrt(area / pi)`` (m): the radius of the disc of the same
-        area, which moves smoothly with the load instead of by whole node spacings."""
-        return math.sqrt(self.contact_area / math.pi)
-
-    @property
-    def peak_pressure(self) -> float:
-        """Largest nodal pressure (Pa)."""
-        return float(self.pressure.max())
-
-    @property
-    def pressure_centroid_x(self) -> float:
-        """``x`` of the resultant normal force (m); ``> 0`` means shifted to the leading edge."""
-        return pressure_centroid_x(self.grid, self.force)
 
     def summary(self) -> dict:
         """The scalars (SI units), the grid and the solve record as a JSON-ready dict; the

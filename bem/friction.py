@@ -44,7 +44,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .contact import SHARED_SCALARS, ContactError, ContactNotConverged, grid_summary, pressure_centroid_x
+from .contact import SHARED_SCALARS, ContactError, ContactFigures, ContactNotConverged, grid_summary
 from .grid import Grid
 
 __all__ = [
@@ -160,7 +160,7 @@ class FrictionRecord:
 
 
 @dataclass(frozen=True)
-class FrictionalContact:
+class FrictionalContact(ContactFigures):
     """Result of a frictional rolling/sliding solve; fields are ``(K_y, K_x)`` arrays.
 
     Attributes
@@ -225,19 +225,9 @@ class FrictionalContact:
     rolling_resistance_energy: float = math.nan
 
     @property
-    def contact(self) -> np.ndarray:
-        """Nodes in contact (``N > 0``)."""
-        return self.force > 0
-
-    @property
     def slip(self) -> np.ndarray:
         """Contact nodes in slip."""
         return self.contact & ~self.stick
-
-    @property
-    def pressure(self) -> np.ndarray:
-        """``N / (a_x a_y)`` (Pa)."""
-        return self.force / self.grid.cell_area
 
     @property
     def traction_x(self) -> np.ndarray:
@@ -254,26 +244,6 @@ class FrictionalContact:
         """Stick nodes over contact nodes (-)."""
         n = int(self.contact.sum())
         return float((self.stick & self.contact).sum()) / n if n else math.nan
-
-    @property
-    def contact_area(self) -> float:
-        """``a_x a_y`` per contact node (m^2)."""
-        return float(self.contact.sum()) * self.grid.cell_area
-
-    @property
-    def contact_radius(self) -> float:
-        """``sqrt(area / pi)`` (m)."""
-        return math.sqrt(self.contact_area / math.pi)
-
-    @property
-    def peak_pressure(self) -> float:
-        """Largest nodal pressure (Pa)."""
-        return float(self.pressure.max())
-
-    @property
-    def pressure_centroid_x(self) -> float:
-        """``x`` of the resultant normal force (m); ``> 0`` means shifted to the leading edge."""
-        return pressure_centroid_x(self.grid, self.force)
 
     @property
     def friction_power(self) -> float:
