@@ -21,10 +21,11 @@ per GMRES iteration (``O(K m^2)``). On a grid row the layer's ``uv`` blocks vani
 kernels are odd in ``y``), so lines of :data:`SPLIT_FROM` nodes or more invert the
 tangential block by :func:`tangential_inverse`: two ``s x s`` inverses (``s`` stick nodes)
 and a Schur complement on the slip nodes instead of one ``2 m x 2 m`` inverse (section 11
-at 257 x 257: the fine grid's inversions 4.9 -> 3.2 s CPU). A line whose nodes and stick pattern did not change
-since the previous active-set iteration keeps its inverses unless one of its slip
-directions turned by more than :data:`TURN` since they were built (the kept blocks' slip
-law lags; it is only a preconditioner, but a stale one cost 15 % more GMRES iterations).
+at 257 x 257: the fine grid's inversions 4.9 -> 3.2 s CPU). A line whose nodes and stick
+pattern did not change since the previous active-set iteration keeps its inverses unless
+one of its slip directions turned by more than :data:`TURN` since they were built (the
+kept blocks' slip law lags; it is only a preconditioner, but a stale one cost 15 % more
+GMRES iterations).
 """
 
 from __future__ import annotations
@@ -54,7 +55,7 @@ SPLIT_FROM = 96
 #: directions turned by more than this (rad) since they were built. Measured (GMRES
 #: iterations in all, never refreshed -> 0.2 rad): issue-11 case 61 x 61 190 -> 176,
 #: section 11 129 x 129 265 -> 225, 257 x 257 379 -> 328 (CPU 22.1 -> 18.9 s, loaded
-#: machine); 0.5 rad 334 at 257, 0.1 rad as 0.2; also refreshing on a slope changed 4x:
+#: machine), 513 x 513 988 -> 823; 0.5 rad 334 at 257, 0.1 rad as 0.2; also refreshing on a slope changed 4x:
 #: no change
 TURN = 0.2
 
