@@ -55,8 +55,8 @@ SPLIT_FROM = 96
 #: directions turned by more than this (rad) since they were built. Measured (GMRES
 #: iterations in all, never refreshed -> 0.2 rad): issue-11 case 61 x 61 190 -> 176,
 #: section 11 129 x 129 265 -> 225, 257 x 257 379 -> 328 (CPU 22.1 -> 18.9 s, loaded
-#: machine), 513 x 513 988 -> 823; 0.5 rad 334 at 257, 0.1 rad as 0.2; also refreshing on a slope changed 4x:
-#: no change
+#: machine), 513 x 513 988 -> 823; 0.5 rad 334 at 257, 0.1 rad as 0.2; also refreshing
+#: on a slope changed 4x: no change
 TURN = 0.2
 
 
@@ -110,7 +110,7 @@ class LinePreconditioner:
             lu = J.size >= self.lu_from
             pair = self._cache.get(key)
             p = slip_pos[J[~st]]
-            law = (system.dir_x[p], system.dir_y[p], system.slope[p])
+            law = (system.dir_x[p], system.dir_y[p])
             if pair is not None and _turned(self._built[key], law, self.turn):
                 pair, refreshed = None, True
             if pair is None:
@@ -203,7 +203,7 @@ class LinePreconditioner:
 
 def _turned(old, new, turn: float) -> bool:
     """Whether a slip direction of a line turned by more than ``turn`` (rad) since its
-    blocks were built (``old``, ``new``: the slip nodes' ``dir_x, dir_y, slope``)."""
+    blocks were built (``old``, ``new``: the slip nodes' ``dir_x, dir_y``)."""
     if not np.isfinite(turn) or old[0].size == 0:
         return False
     cross = old[0] * new[1] - old[1] * new[0]
