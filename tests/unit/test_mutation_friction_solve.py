@@ -819,7 +819,7 @@ def _replay(kernels, setup, friction, start, expect_error=None):
     return counts, out, states, predicted if ends != "accepted" else "accepted"
 
 
-def _rolling_setup(kernels, friction, load=20.0):
+def _rolling_setup(kernels, friction, load=20.0, start_load=None):
     from bem.frictional import RollingOperators, RollingSetup
     from bem.frictional.loading import constraint
     from bem.frictional.starts import frictionless_start
@@ -827,12 +827,23 @@ def _rolling_setup(kernels, friction, load=20.0):
     ops = RollingOperators(GRID, kernels)
     X, Y = GRID.coordinates()
     s = Sphere(R).profile(X, Y)
-    N0 = solve_normal(ops.op("ww"), s, load=load).force.ravel()
+    N0 = solve_normal(ops.op("ww"), s, load=start_load or load).force.ravel()
     ell, arm = rolling_radius(Sphere(R), Y).ravel(), Sphere(R).rolling_arm(X, Y).ravel()
     cons = None if friction.omega is not None else constraint(friction.mode, arm, ell, R)
     setup = RollingSetup(ops=ops, profile=s.ravel(), arm=arm, ell=ell, radius=R, speed=V, mu=friction.mu,
                          load=load, indentation=None, omega=friction.omega, constraint=cons)
     return setup, frictionless_start(N0, ell, V, friction)
+
+
+@pytest.mark.parametrize("friction", [Friction(0.3, "towed"), Friction(0.3, "omega", omega=0.9 * V / R),
+                                      Friction(0.3, "omega", omega=0.0)], ids=lambda f: f"{f.mode}-{f.omega}")
+def test_active_set_steps_follow_the_rules_from_a_small_start(kernels, friction):
+    """From the frictionless contact of 8 N under 20 N the contact grows: nodes join in
+    stick, or (Omega given, rigid creep over 1 %) in slip along w with k = |w| / (mu N_min)."""
+    setup, start = _rolling_setup(kernels, friction, start_load=8.0)
+    assert start.contact.sum() < 50
+    counts, out, states, _ = _replay(kernels, setup, friction, start)
+    assert out.state.contact.sum() > start.contact.sum() + 10
 
 
 @pytest.mark.parametrize("friction", [Friction(0.3), Friction(0.3, "omega", omega=0.99 * V / R),
@@ -900,7 +911,7 @@ def test_one_node_updates_take_the_worst_violation_in_order():
     drop = np.array([1, 1, 0, 0, 0, 0], bool)
     add = np.array([0, 0, 0, 0, 1, 1], bool)
     gap = np.array([1.0, 1.0, 1.0, 1.0, -1.0, -3.0])
-    smag = np.array([1.0, 3.0, 0.0, 0.0, 0.0, 0.0])  # beyond mu N = 0.5, 1.0 only if N > 0 below
+    smag = np.array([3.0, 2.0, 0.0, 0.0, 0.0, 0.0])
     to_slip = np.array([1, 1, 0, 0, 0, 0], bool)
     wdot = np.array([0.0, 0.0, -1.0, -5.0, 0.0, 0.0])
     to_stick = np.array([0, 0, 1, 1, 0, 0], bool)
@@ -916,7 +927,8 @@ def test_one_node_updates_take_the_worst_violation_in_order():
     v = _violations(6, gap=gap, smag=smag, wdot=wdot, add=add, to_slip=to_slip, to_stick=to_stick)
     assert step(v, True) == ([1, 1, 1, 1, 0, 1], [1, 1, 0, 0, 0, 1])  # h = -3 joins in stick
     assert step(v, True, join) == ([1, 1, 1, 1, 0, 1], [1, 1, 0, 0, 0, 0])  # ... or in slip
-    Np = np.array([1.0, 1.0, 3.0, 4.0, 0.0, 0.0])  # cone excess 0.5 and 2.5: node 1 slips
+    # mu N = 2.5 and 0.5: cone excess 0.5 N and 1.5 N, node 1 slips (node 0 has the larger |S|)
+    Np = np.array([5.0, 1.0, 3.0, 4.0, 0.0, 0.0])
     v = _violations(6, smag=smag, wdot=wdot, to_slip=to_slip, to_stick=to_stick)
     assert step(v, True, forces=Np) == ([1, 1, 1, 1, 0, 0], [1, 0, 0, 0, 0, 0])
     v = _violations(6, wdot=wdot, to_stick=to_stick)
@@ -926,3 +938,26 @@ def test_one_node_updates_take_the_worst_violation_in_order():
     assert step(v, False, join) == ([0, 0, 1, 1, 1, 1], [0, 0, 1, 1, 1, 0])
     v = _violations(6, smag=smag, wdot=wdot, to_slip=to_slip, to_stick=no)
     assert step(v, False, forces=Np) == ([1, 1, 1, 1, 0, 0], [0, 0, 0, 0, 0, 0])
+
+
+def test_two_stick_nodes_out_of_iterations_are_not_unreachable(kernels):
+    """Torque mode with exactly two stick nodes when the iterations run out: not the
+    whole contact slipping, so not LoadingUnreachable (one stick node would be)."""
+    from bem.frictional import SetState
+    from bem.frictional.active_set import LinearSolves, run_active_set
+
+    setup = _setup(kernels, omega=None, load=20.0, indentation=None, mode="torque", mu=0.05)
+    contact = setup.profile < 1e-4
+    n = contact.size
+    direction = np.zeros((n, 2))
+    direction[contact, 0] = 1.0
+    stick = np.zeros(n, bool)
+    stick[np.flatnonzero(contact)[[10, 20]]] = True
+    slope = np.where(contact & ~stick, 1e-3 * V / 0.05, 0.0)
+    start = SetState(contact=contact, stick=stick, direction=direction, slope=slope)
+    lines = []
+    with pytest.raises(FrictionNotConverged) as info:
+        run_active_set(setup, Friction(0.05, "torque", max_iter=1), start, LinearSolves(1000), lines.append)
+    assert re.match(r"friction 1: \d+ contact, 2 stick, ", lines[0])
+    assert not isinstance(info.value, LoadingUnreachable)
+    assert str(info.value).startswith("no converged stick/slip state in 1 iterations")
