@@ -86,6 +86,7 @@ class LinePreconditioner:
     def __init__(self, pad: int = 8, dtype=np.float32, lu_from: int | None = None, turn: float = TURN):
         self._cache: dict = {}
         self._built: dict = {}
+        self._normal: dict = {}
         self.turn = turn
         self._batches: tuple = (None, None)
         self.factorised = 0
@@ -101,11 +102,12 @@ class LinePreconditioner:
         lines = np.split(np.arange(nC), cuts)
         slip_pos = np.full(nC, -1)
         slip_pos[system.B] = np.arange(system.B.size)
-        cache, groups, keys, long_lines, built = {}, {}, [], [], {}
+        cache, groups, keys, long_lines, built, normal = {}, {}, [], [], {}, {}
         refreshed = False
         for J in lines:
             st = system.stick[J]
-            key = system.C[J].tobytes() + st.tobytes()
+            nodes = system.C[J].tobytes()
+            key = nodes + st.tobytes()
             keys.append(key)
             lu = J.size >= self.lu_from
             pair = self._cache.get(key)
@@ -114,12 +116,17 @@ class LinePreconditioner:
             if pair is not None and _turned(self._built[key], law, self.turn):
                 pair, refreshed = None, True
             if pair is None:
-                pair = self._inverses(system, J, st, slip_pos, self.dtype if lu else None)
+                pair = self._inverses(system, J, st, slip_pos, self.dtype if lu else None, self._normal.get(nodes))
                 self.factorised += 1
                 built[key] = law
             else:
                 built[key] = self._built[key]
             cache[key] = pair
+            # the normal block depends on the line's nodes alone: kept (own copy) for a
+            # line whose stick pattern or slip directions change
+            normal[nodes] = self._normal.get(nodes)
+            if normal[nodes] is None:
+                normal[nodes] = pair[0] if lu else np.array(pair[0], self.dtype)
             if lu:
                 long_lines.append((J, np.concatenate([nC + J, 2 * nC + J]), pair))
                 continue
@@ -139,7 +146,7 @@ class LinePreconditioner:
                 inv_n[b, :m, :m], inv_t[b, :2 * m, :2 * m], coup[b, :m] = a_n, a_t, c
                 cache[key] = (inv_n[b, :m, :m], inv_t[b, :2 * m, :2 * m], coup[b, :m])  # views: one copy
             batches.append((idx_n, idx_t, inv_n, inv_t, coup))
-        self._cache, self._built = cache, built
+        self._cache, self._built, self._normal = cache, built, normal
         self._batches = (whole, batches)
         om_step = 1.0 / system.ax  # the inverse of the scaled Omega's stick-row coefficient
         ext = np.zeros(n + 1, self.dtype)
@@ -169,20 +176,21 @@ class LinePreconditioner:
         system.precondition = precondition
 
     @staticmethod
-    def _inverses(system: SetSystem, J, stick, slip_pos, lu_dtype=None):
+    def _inverses(system: SetSystem, J, stick, slip_pos, lu_dtype=None, normal=None):
         """The inverses of the line's normal block (``C_ww``) and tangential block (the
         ``x, y`` rows in ``S_x, S_y``, without ``C_uw, C_vw``) and the slip nodes'
         coupling ``-mu diag`` (0 on stick nodes), for contact positions ``J``; with
-        ``lu_dtype`` the blocks' LU factors ``(lu, piv)`` in that precision instead."""
+        ``lu_dtype`` the blocks' LU factors ``(lu, piv)`` in that precision instead; ``normal``
+        is the normal block's inverse (or factors) when already known."""
         ops, ax = system.ops, system.ax
         c = system.C[J]
         m = J.size
         p = slip_pos[J[~stick]]
         dir_x, dir_y, slope = system.dir_x[p], system.dir_y[p], system.slope[p]
         coup = np.where(stick, 0.0, -system.setup.mu * system.diag)
-        W = ops.dense("ww", c, c)
+        W = ops.dense("ww", c, c) if normal is None else None
         if lu_dtype is None and m >= SPLIT_FROM and not _row_coupled(ops):
-            return np.linalg.inv(W), tangential_inverse(ax * ops.dense("duu", c, c), ax * ops.dense("dvv", c, c),
+            return normal if W is None else np.linalg.inv(W), tangential_inverse(ax * ops.dense("duu", c, c), ax * ops.dense("dvv", c, c),
                                                         stick, dir_x, dir_y, slope, system.diag), coup
         Dx = ax * np.hstack([ops.dense("duu", c, c), ops.dense("duv", c, c)])
         Dy = ax * np.hstack([ops.dense("dvu", c, c), ops.dense("dvv", c, c)])
@@ -190,10 +198,13 @@ class LinePreconditioner:
         T = force_rows(stick, dir_x, dir_y, slope, system.setup.mu, system.diag, zero, Dx, Dy, zero,
                        eye[:m], eye[m:])[m:]
         if lu_dtype is None:
-            return np.linalg.inv(W), np.linalg.inv(T), coup
+            return normal if W is None else np.linalg.inv(W), np.linalg.inv(T), coup
         getrf = lapack.sgetrf if lu_dtype == np.float32 else lapack.dgetrf
         factors = []
         for block in (W, T):
+            if block is None:
+                factors.append(normal)
+                continue
             lu, piv, info = getrf(block.astype(lu_dtype), overwrite_a=True)
             if info != 0:
                 raise np.linalg.LinAlgError(f"singular line block of {m} contact nodes (getrf info {info})")
