@@ -36,7 +36,7 @@ from .operator import ComplianceOperator
 __all__ = [
     "ContactError", "ContactNotConverged", "ContactAtEdge", "SolveRecord", "ContactFigures", "NormalContact",
     "solve_normal", "grid_summary", "pressure_centroid_x", "SHARED_SCALARS", "NormalSystem", "coarse_grid",
-    "edge_nodes",
+    "edge_nodes", "DENSE_LIMIT",
 ]
 
 
@@ -229,6 +229,14 @@ class NormalSystem:
         return (x[:self.m], float(x[self.m])) if self.bordered else (x, self.indentation)
 
 
+#: contact sets up to this many nodes are solved by dense LU, larger ones by GMRES (FFT
+#: products, circulant-inverse preconditioner): dense LU costs ``O(n^3)``. Measured (CPU,
+#: one thread, the whole solve with its coarse-grid starts; 3000 -> 300 or 0): section 11
+#: at 41 x 41 0.20 -> 0.06 s, at 129 x 129 2.54 -> 0.47 s, at 257 x 257 3.05 -> 1.33 s;
+#: issue 11's case at 61 x 61 (1977 contact nodes) 1.00 -> 0.13 s
+DENSE_LIMIT = 300
+
+
 def coarse_grid(grid: Grid) -> Grid | None:
     """Every other node of ``grid`` (same period and truncation), or ``None`` when the grid
     is small (< 625 nodes, or < 9 a side) or even-sized: the coarse level of the solvers'
@@ -275,7 +283,7 @@ def solve_normal(
     indentation: float | None = None,
     arm: np.ndarray | None = None,
     max_iter: int = 100,
-    dense_limit: int = 3000,
+    dense_limit: int = DENSE_LIMIT,
     rtol: float = 1e-11,
     progress: Callable[[str], None] | None = None,
 ) -> NormalContact:
@@ -293,7 +301,8 @@ def solve_normal(
     max_iter : int
         Active-set iterations allowed.
     dense_limit : int
-        Largest contact set solved by dense LU; larger ones use GMRES.
+        Largest contact set solved by dense LU; larger ones use GMRES (default
+        :data:`DENSE_LIMIT`).
     rtol : float
         GMRES relative tolerance.
     progress : callable, optional

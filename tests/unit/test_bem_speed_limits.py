@@ -61,14 +61,15 @@ def test_a_speed_below_the_shear_wave_speed_solves():
     """50 m/s (0.91 c_s): R_r = 4.468e-3 N (measured), far on the glassy side of the loss
     peak (omega_1 tau = 393)."""
     res = solve_frictionless(_problem(SECTION11, 50.0))[0]
-    assert res.load == pytest.approx(150.0, rel=1e-12)
+    # GMRES (rtol 1e-11, above DENSE_LIMIT nodes) meets the load row to 7.5e-12 measured
+    assert res.load == pytest.approx(150.0, rel=3e-11)
     assert 0 < res.rolling_resistance < 0.01
     assert res.record.residual < 1e-10
 
 
 def test_without_inertia_there_is_no_speed_limit():
     res = solve_frictionless(_problem(NO_INERTIA, 100.0))[0]
-    assert np.isfinite(res.force).all() and res.load == pytest.approx(150.0, rel=1e-12)
+    assert np.isfinite(res.force).all() and res.load == pytest.approx(150.0, rel=3e-11)  # GMRES, as above
 
 
 @pytest.mark.parametrize("speed", [1e150, 1e300])
@@ -80,7 +81,7 @@ def test_absurd_speeds_give_the_fast_limit(speed):
     res = solve_frictionless(_problem(NO_INERTIA, speed))[0]
     ref = solve_frictionless(Problem(Layer(5e-3, _FastLimit(), 0.0), Sphere(0.02), GRID, Loading(1.0, load=150.0)))[0]
     assert np.isfinite(res.force).all() and math.isfinite(res.indentation)
-    assert res.load == pytest.approx(150.0, rel=1e-12)
+    assert res.load == pytest.approx(150.0, rel=3e-11)  # GMRES, as above
     assert abs(res.indentation / ref.indentation - 1) < 1e-12
     np.testing.assert_allclose(res.force, ref.force, rtol=0, atol=1e-12 * ref.force.max())
 
