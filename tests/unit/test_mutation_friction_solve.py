@@ -836,7 +836,8 @@ def _rolling_setup(kernels, friction, load=20.0, start_load=None):
 
 
 @pytest.mark.parametrize("friction", [Friction(0.3, "towed"), Friction(0.3, "omega", omega=0.9 * V / R),
-                                      Friction(0.3, "omega", omega=0.0)], ids=lambda f: f"{f.mode}-{f.omega}")
+                                      Friction(0.3, "omega", omega=V / R), Friction(0.3, "omega", omega=0.0)],
+                         ids=lambda f: f"{f.mode}-{f.omega}")
 def test_active_set_steps_follow_the_rules_from_a_small_start(kernels, friction):
     """From the frictionless contact of 8 N under 20 N the contact grows: nodes join in
     stick, or (Omega given, rigid creep over 1 %) in slip along w with k = |w| / (mu N_min)."""
