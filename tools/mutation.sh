@@ -8,6 +8,8 @@
 #   MUTATION_REF=<commit>  tools/mutation.sh ...    mutate/test another commit
 #   MUTATION_TESTS_REF=<commit> ...                 take tests/ from this commit instead (e.g. mutate the
 #                                                   sources of an older commit with newer tests)
+#   MUTATION_OVERLAY='<ref>:<path> ...'             then put these files of these commits over the copy (e.g.
+#                                                   new test files next to the old suite of MUTATION_TESTS_REF)
 #   MUTATION_DIR=<dir>     tools/mutation.sh ...    scratch directory (default /tmp/viscolayer-mutation/<module>)
 #   MUTATION_NAMES='<mutant names or globs>' ...    only these mutants (e.g. the survivors of a full run)
 #   MUTATION_PYTEST_ARGS='--deselect NODE ...' ...  more pytest arguments (split on spaces), e.g. leave
@@ -65,6 +67,9 @@ if [ -n "${MUTATION_TESTS_REF:-}" ]; then
     rm -rf "$work/tests"
     git -C "$here" archive "$MUTATION_TESTS_REF" tests | tar -x -C "$work"
 fi
+for item in ${MUTATION_OVERLAY:-}; do
+    git -C "$here" archive "${item%%:*}" "${item#*:}" | tar -x -C "$work"
+done
 cd "$work"
 present=()
 for t in "${tests[@]}"; do [ -f "${t%%::*}" ] && present+=("$t"); done
