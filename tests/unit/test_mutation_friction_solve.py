@@ -962,3 +962,27 @@ def test_two_stick_nodes_out_of_iterations_are_not_unreachable(kernels):
     assert re.match(r"friction 1: \d+ contact, 2 stick, ", lines[0])
     assert not isinstance(info.value, LoadingUnreachable)
     assert str(info.value).startswith("no converged stick/slip state in 1 iterations")
+
+
+def test_add_threshold_is_a_penetration_of_1e_12_d(kernels):
+    """From a converged state, two nodes outside the contact are given profiles that put
+    them 1e-10 m into the layer (1e-6 d: it joins) and 1e-17 m above it (h = 1e-13 d > 0:
+    it stays out), the forces unchanged by the first solve of the same sets."""
+    import dataclasses
+
+    from bem.frictional.active_set import LinearSolves, run_active_set
+
+    friction = Friction(0.3, "omega", omega=0.99 * V / R)
+    setup, start = _rolling_setup(kernels, friction)
+    first = run_active_set(setup, friction, start, LinearSolves(1000))
+    outside = np.flatnonzero(np.isfinite(first.gap) & ~first.state.contact)
+    j_in, j_out = outside[np.argsort(first.gap[outside])[:2]]  # the two closest to the surface
+    s = setup.profile.copy()
+    s[j_in] -= first.gap[j_in] + 1e-10
+    s[j_out] -= first.gap[j_out] - 1e-17
+    moved = dataclasses.replace(setup, profile=s)
+    lines = []
+    out = run_active_set(moved, friction, first.state, LinearSolves(1000), lines.append)
+    assert re.search(r", -0 \+1 contact, ", lines[0]), lines[0]
+    assert out.state.contact[j_in] and not out.state.contact[j_out]
+    assert len(out.history) == 2
