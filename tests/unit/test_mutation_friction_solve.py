@@ -986,3 +986,32 @@ def test_add_threshold_is_a_penetration_of_1e_12_d(kernels):
     assert re.search(r", -0 \+1 contact, ", lines[0]), lines[0]
     assert out.state.contact[j_in] and not out.state.contact[j_out]
     assert len(out.history) == 2
+
+
+def test_cone_test_has_a_margin_of_1e_10(kernels):
+    """A fully stuck state (torque, mu = 50) does not depend on mu; re-run from it with mu
+    set so that the most loaded stick node has |S| = mu N (1 + 5e-11): within the
+    1e-10 margin, it stays in stick; at |S| = mu N (1 + 2e-10) it slips (with its mirror
+    image in y, loaded alike)."""
+    import dataclasses
+
+    from bem.frictional.active_set import LinearSolves, run_active_set
+
+    setup, start = _rolling_setup(kernels, Friction(50.0, "torque"))
+    stuck = run_active_set(setup, Friction(50.0, "torque"), start, LinearSolves(1000))
+    c = stuck.state.contact
+    assert (stuck.state.stick[c]).all()
+    ratio = np.where(c, np.hypot(stuck.Sx, stuck.Sy) / np.where(c, stuck.N, 1.0), 0.0)
+    q = ratio.max()
+    for excess, slips in ((5e-11, 0), (2e-10, 1)):
+        mu = q / (1 + excess)
+        lines = []
+        again = dataclasses.replace(setup, mu=mu)
+        if slips:
+            with pytest.raises(FrictionNotConverged):  # it slips, and 1 iteration is not enough
+                run_active_set(again, Friction(mu, "torque", max_iter=1), stuck.state, LinearSolves(1000),
+                               lines.append)
+        else:  # nothing changes: converged at the second, tight solve
+            run_active_set(again, Friction(mu, "torque", max_iter=2), stuck.state, LinearSolves(1000), lines.append)
+        n_slip = int(re.search(r", \+(\d+) slip, ", lines[0])[1])
+        assert (n_slip >= 1) if slips else (n_slip == 0), lines[0]  # 2: the node and its mirror in y
