@@ -516,11 +516,12 @@ def test_two_stick_nodes_out_of_iterations_is_not_unreachable(kernels):
 
 
 def test_contact_at_the_edge_and_emptied_contact_messages_whole(kernels):
-    """A flat punch pressed in touches every node, edges included; pulled away (d < 0)
+    """A flat strip pressed in touches every node it covers, edges included; pulled away (d < 0)
     the whole contact goes into tension and the set empties."""
     from bem.frictional.active_set import LinearSolves, run_active_set
 
-    flat = np.zeros(GRID.shape)
+    flat = np.full(GRID.shape, np.inf)
+    flat[10:13, :] = 0.0  # a flat strip of three grid rows across the region, edge to edge
     setup = _setup(kernels, profile=flat, omega=V / R, indentation=1e-5)
     friction = Friction(0.3, "omega", omega=V / R)
     with pytest.raises(ContactAtEdge) as info:
