@@ -429,3 +429,47 @@ def test_line_preconditioner_refreshes_a_line_whose_slip_direction_turned(kernel
         assert pre.factorised == before + refreshed
         err = np.abs(turned.precondition(turned.matvec(x)) - x).max()
         assert (err < 1e-9) if refreshed else (err > 1e-6), (angle, err)
+
+
+def test_the_turn_rule_measures_the_angle_between_old_and_new_directions():
+    """``_turned``: the largest angle between a line's old and new slip directions against
+    ``turn`` (rad), across the +-pi cut; no slip node, or ``turn = inf``, never turns."""
+    from bem.frictional.preconditioner import _turned
+
+    def law(*angles):
+        a = np.array(angles, float)
+        return np.cos(a), np.sin(a)
+
+    assert _turned(law(1.2, 0.3), law(1.45, 0.3), 0.2)  # 0.25 rad on the first node
+    assert not _turned(law(1.2, 0.3), law(1.35, 0.4), 0.2)  # 0.15 and 0.1 rad
+    assert not _turned(law(3.1), law(-3.1), 0.2)  # 0.083 rad across the cut
+    assert _turned(law(3.1), law(-2.8), 0.2)  # 0.383 rad across the cut
+    assert not _turned(law(0.0), law(3.0), np.inf)
+    empty = (np.zeros(0), np.zeros(0))
+    assert not _turned(empty, empty, 0.0)
+
+
+@pytest.mark.parametrize("coupled", [False, True])
+def test_the_split_inverse_is_used_only_where_a_row_decouples(kernels, monkeypatch, coupled):
+    """With every line long enough (``SPLIT_FROM = 1``): the layer's kernels (``uv`` zero on
+    a grid row) go through ``tangential_inverse``; kernels whose ``uv`` block couples a row
+    (made so here) fall back to the whole block's inverse, and the preconditioner is the
+    exact inverse of the line blocks either way (uncoupled normal block, one grid row)."""
+    from bem.frictional import preconditioner
+
+    monkeypatch.setattr(preconditioner, "SPLIT_FROM", 1)
+    calls = []
+    split = preconditioner.tangential_inverse
+    monkeypatch.setattr(preconditioner, "tangential_inverse", lambda *a: calls.append(1) or split(*a))
+    Ky, Kx = GRID.shape
+    row = (Ky // 2) * Kx + np.arange(Kx // 2 - 6, Kx // 2 + 6)
+    kern = {b: (np.zeros_like(k) if b in ("wu", "wv", "uw", "vw") else k.copy()) for b, k in kernels.items()}
+    if coupled:  # an odd-in-x uv on the row y = 0
+        for b in ("uv", "vu"):
+            kern[b][Ky - 1] = 0.1 * kern["uu"][Ky - 1] * np.sign(np.arange(2 * Kx - 1) - (Kx - 1))
+    system, _ = _system(kern, None, 1e-4, 2.4, contact=row)
+    assert preconditioner._row_coupled(system.ops) == coupled
+    preconditioner.LinePreconditioner(dtype=np.float64).attach(system)
+    assert bool(calls) != coupled
+    x = np.random.default_rng(9).normal(size=system.n)
+    assert np.abs(system.precondition(system.matvec(x)) - x).max() < 1e-9 * np.abs(x).max()
