@@ -74,7 +74,9 @@ class LinePreconditioner:
     Use :meth:`attach` for each new system: it builds (or reuses) the inverses and sets
     ``system.precondition``. The inverses are applied as batched matrix products, lines
     grouped by size (padded to a multiple of ``pad`` nodes), so a GMRES iteration costs a
-    few BLAS calls, not one call per line. ``factorised`` counts the lines inverted.
+    few BLAS calls, not one call per line. ``factorised`` counts the lines inverted; a
+    line's blocks are kept while its nodes and stick pattern repeat and no slip direction
+    turned by more than ``turn`` (rad, default :data:`TURN`) since they were built.
 
     The inverses are computed in double precision and kept in ``dtype`` (single by
     default): the products are memory-bound on large grids (257 x 257: 36 -> 18 ms an
