@@ -47,6 +47,7 @@ default_tests() {
             tests/unit/test_derivation_eq45.py ;;
         bem/energy.py) echo tests/unit/test_properties_layer.py ;;
         bem/friction.py|bem/frictional/*) echo tests/unit/test_mutation_kills_friction.py \
+            tests/unit/test_mutation_kills_active_set.py \
             tests/unit/test_mutation_friction_solve.py tests/unit/test_friction.py tests/unit/test_bem_friction_cli.py \
             tests/unit/test_bem_displacement_control.py::test_frictional_rolling_under_displacement_control ;;
         bem/contact.py) echo tests/unit/test_mutation_kills_contact.py tests/unit/test_contact.py \
