@@ -15,8 +15,11 @@ load control and the geometric overlap ``{s < d}`` under displacement control (w
 profile's height, i.e. tension, on most of them). It needs no symmetry of ``C`` (steady
 rolling makes it non-symmetric) and ends with the exact complementarity solution of the
 discrete problem. Linear solves are dense LU on small sets and restarted GMRES with the
-FFT operator otherwise, preconditioned by the exact inverse of the operator's circulant
-embedding (two FFTs; it cuts the iterations about sevenfold), so memory stays ``O(N)``. A set that recurs (a cycle) switches
+FFT operator otherwise (the flexible, right-preconditioned :func:`bem.linear.fgmres`,
+which minimises the true residual and orthogonalises by matrix products: 1.2-1.7x
+faster than SciPy's GMRES here, 55 -> 47 iterations at 61 x 61, 87 -> 70 at 257 x 257),
+preconditioned by the exact inverse of the operator's circulant embedding (two FFTs; it
+cuts the iterations about sevenfold), so memory stays ``O(N)``. A set that recurs (a cycle) switches
 to one-node updates; a cycle there raises :class:`ContactNotConverged`.
 """
 
@@ -338,7 +341,7 @@ def solve_normal(
             )
     else:
         first = reachable
-    solve = LinearSolver(dense_limit, rtol, restart=100, maxiter=100, error=ContactNotConverged)
+    solve = LinearSolver(dense_limit, rtol, restart=100, maxiter=100, error=ContactNotConverged, flexible=True)
     start = _coarse_start(operator, s, reachable, load, indentation, dense_limit, rtol)
     active = first.copy() if start is None or not start.any() else start
     seen: set[bytes] = set()
