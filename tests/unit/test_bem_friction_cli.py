@@ -34,6 +34,13 @@ def test_cli_friction_json_plot_and_fields(tmp_path, capsys):
     # the frictional part recomputed from the fields: the slip power sum |S| |w| over V
     S, w = np.hypot(fields["force_x"], fields["force_y"]), np.hypot(fields["slip_x"], fields["slip_y"])
     assert np.sum(S * w) / 0.05 == pytest.approx(out["rolling_resistance_friction"], rel=1e-9)
+    # the total from the fields' Q and the reported Omega (eq. 4, pushed at the top: T = Q R),
+    # and so the viscous part R_r - R_r^F from the fields alone (issue 14: it was checked as
+    # total = friction + viscous, true by the code's definition of the viscous part)
+    Q = fields["force_x"].sum() + np.sum(fields["force"] * fields["x"][None, :]) / 0.02
+    total = Q * (1 + 0.02 * out["omega"] / 0.05)
+    assert out["rolling_resistance"] == pytest.approx(total, rel=1e-9)
+    assert out["rolling_resistance_viscous"] == pytest.approx(total - np.sum(S * w) / 0.05, rel=1e-9)
     slip = ~fields["stick"] & fields["contact"]
     assert slip.any() and np.all(w[fields["stick"]] == 0)
     # Coulomb on the slip nodes, S = mu N along the slip, from the returned fields

@@ -674,6 +674,34 @@ def test_height_map_indenter_with_a_friction_radius(kernels):
     assert res.driving_force == pytest.approx(Q, rel=1e-12)
 
 
+@pytest.mark.parametrize("friction", [Friction(0.3), Friction(0.3, "towed"), Friction(0.3, "omega", omega=0.0)],
+                         ids=lambda f: f"{f.mode}-{f.omega}")
+def test_a_cylinder_with_friction(kernels, friction):
+    """A roller of finite length (R = 20 mm, 6 mm long, flat ends; issue 14: cylinder
+    indenters never ran with friction): every field and figure from the returned forces;
+    its axis is parallel to the surface, so every point is R from it (l = R: T = -R sum S_x)
+    and its arm is x / R (Q = sum N x / R + sum S_x), written here from the geometry; the
+    contact stays within the roller's length (no force beyond |y| = 3 mm). Pure sliding
+    (Omega = 0) drags the layer with mu P less the lateral slip component, as for the
+    sphere (measured 0.999996 mu P; 0.999 allowed)."""
+    from bem.indenters import Cylinder
+
+    cyl = Cylinder(R, 6e-3)
+    p = problem(cyl)
+    res, _ = solve_friction(p, friction, kernels=kernels, energy=False)
+    check_result(res, p, friction, kernels)
+    X, Y = GRID.coordinates()
+    assert not res.force[np.abs(Y) > 3e-3 + 1e-12].any() and res.contact[np.abs(Y) < 2.5e-3].any()
+    assert res.driving_torque == pytest.approx(-R * res.force_x.sum(), rel=1e-12, abs=1e-15)
+    Q = float((res.force * X).sum() / R + res.force_x.sum())
+    assert res.driving_force == pytest.approx(Q, rel=1e-12, abs=1e-15)
+    if friction.omega == 0.0:
+        assert res.stick_fraction == 0.0
+        assert 0.999 * 0.3 * 20.0 < res.force_x.sum() <= 0.3 * 20.0 * (1 + 1e-9)
+    else:
+        assert 0 < res.stick_fraction < 1
+
+
 # --- the active set's steps replayed from its rules --------------------------------------
 
 def _replay(kernels, setup, friction, start, expect_error=None):
