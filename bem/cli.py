@@ -95,7 +95,7 @@ def main(argv: list[str] | None = None) -> int:
         if friction is None:
             result, timings = solve_frictionless(problem, progress=progress, grow=auto)
         else:
-            from .rolling import solve_friction
+            from .frictional import solve_friction
 
             result, timings = solve_friction(problem, friction, progress=progress)
     except ValueError as exc:
