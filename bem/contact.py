@@ -341,7 +341,7 @@ def solve_normal(
             )
     else:
         first = reachable
-    solve = LinearSolver(dense_limit, rtol, restart=100, maxiter=100, error=ContactNotConverged, flexible=True)
+    solve = LinearSolver(dense_limit, rtol, restart=100, maxiter=100, error=ContactNotConverged)
     start = _coarse_start(operator, s, reachable, load, indentation, dense_limit, rtol)
     active = first.copy() if start is None or not start.any() else start
     seen: set[bytes] = set()

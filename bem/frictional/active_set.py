@@ -89,7 +89,7 @@ class LinearSolves:
 
     def __init__(self, dense_limit: int, reduction: float = 1e-10):
         self.solver = LinearSolver(dense_limit, reduction, restart=200, maxiter=10, correction=True,
-                                   error=FrictionNotConverged, flexible=True, floor=RESIDUAL_FLOOR)
+                                   error=FrictionNotConverged, floor=RESIDUAL_FLOOR)
         self.lines = LinePreconditioner()
 
     @property
