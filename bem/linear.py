@@ -14,6 +14,7 @@ from __future__ import annotations
 from typing import Protocol
 
 import numpy as np
+
 __all__ = ["LinearSystem", "LinearSolver", "fgmres"]
 
 
@@ -124,8 +125,8 @@ def fgmres(matvec, b: np.ndarray, precondition=None, *, tol: float, restart: int
 
 class LinearSolver:
     """Dense LU up to ``dense_limit`` unknowns, :func:`fgmres` above (right preconditioning,
-    the true residual; 1.2-1.7x faster than SciPy's left-preconditioned GMRES on the
-    frictionless solver, which used it until session 19).
+    the true residual; on the frictionless solver 1.2-1.7x faster than SciPy's
+    left-preconditioned GMRES, measured in BENCHMARKS.md).
 
     Parameters
     ----------
@@ -143,9 +144,8 @@ class LinearSolver:
     error : type
         Exception class raised when a solve fails.
     floor : float
-        A residual below ``floor |b|`` is good enough whatever
-        ``rtol`` asks (-): a correction whose residual is already near rounding is not
-        reduced ten more orders.
+        A residual below ``floor |b|`` is good enough whatever ``rtol`` asks (-): a
+        correction whose residual is already near rounding is not reduced ten more orders.
     what : str
         Names the system in error messages (``"3 x 1977 unknowns of the stick/slip set"``).
 
