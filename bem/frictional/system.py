@@ -53,10 +53,6 @@ class SetState:
         """Contact nodes in slip."""
         return self.contact & ~self.stick
 
-    def key(self) -> bytes:
-        """The sets packed into bytes (to detect a cycle)."""
-        return np.packbits(np.concatenate([self.contact, self.stick])).tobytes()
-
 
 @dataclass(frozen=True)
 class RollingSetup:
