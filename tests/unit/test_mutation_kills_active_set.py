@@ -175,6 +175,7 @@ def test_a_cycle_without_stick_nodes_is_rejected_and_reports_its_figures(monkeyp
     want = p["last"]
     assert set_tol == 0.01
     for got, key in ((over, "over"), (back, "back"), (misfit, "misfit"), (contact, "contact")):
+        # printed to three digits (%.2e): 5e-3 relative; exact zeros print as 0.00e+00
         assert got == pytest.approx(want[key], rel=5e-3, abs=1e-15), (key, str(info.value))
     # q joined along its slip velocity outside the contact (joiners in slip slip along w)
     np.testing.assert_allclose(layer.states[2].direction[Q], W_OUT / np.hypot(*W_OUT), rtol=1e-9)
