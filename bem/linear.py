@@ -15,7 +15,13 @@ from typing import Protocol
 
 import numpy as np
 
-__all__ = ["LinearSystem", "LinearSolver", "fgmres"]
+__all__ = ["LinearSystem", "LinearSolver", "fgmres", "RANK_TOL"]
+
+#: :func:`fgmres` takes a least-squares step instead of the triangular solve when a
+#: diagonal entry of its Hessenberg factor falls below this fraction of the largest (a
+#: product ``A z_j`` in the span of the earlier ones, to rounding): on ``diag(1, 2, 0)``
+#: the triangular solve gave a step of 3e14 (a diagonal entry of 1e-16, not exactly 0)
+RANK_TOL = 1e-13
 
 
 class LinearSystem(Protocol):
@@ -109,10 +115,12 @@ def fgmres(matvec, b: np.ndarray, precondition=None, *, tol: float, restart: int
                 break
         k = j + 1
         R = np.triu(H[:k, :k])
-        if np.all(np.diag(R) != 0):
+        d = np.abs(np.diag(R))
+        if d.min() > RANK_TOL * d.max():
             y = np.linalg.solve(R, g[:k])
-        else:  # A z_j = 0 for some j: the least-squares step, and a failure if it does not suffice
-            y = np.linalg.lstsq(R, g[:k], rcond=None)[0]
+        else:  # A z_j in the span of the others, to rounding: the least-squares step on the
+            # well-determined directions, and a failure if it does not suffice
+            y = np.linalg.lstsq(R, g[:k], rcond=RANK_TOL)[0]
         x += y @ Z[:k]
         r = b - matvec(x)
         beta = float(np.linalg.norm(r))
