@@ -115,6 +115,8 @@ def fgmres(matvec, b: np.ndarray, precondition=None, *, tol: float, restart: int
                 break
         k = j + 1
         R = np.triu(H[:k, :k])
+        if not (np.isfinite(R).all() and np.isfinite(g[:k]).all()):
+            break  # a product was not finite: the last iterate, and a failure
         d = np.abs(np.diag(R))
         if d.min() > RANK_TOL * d.max():
             y = np.linalg.solve(R, g[:k])
