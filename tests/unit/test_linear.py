@@ -128,6 +128,31 @@ def test_a_singular_operator_gives_the_least_squares_step_and_says_it_failed():
     assert np.linalg.norm(b - A @ x) == pytest.approx(1.0, abs=1e-12)
 
 
+def test_a_direction_below_the_rank_tolerance_counts_as_singular():
+    """A = 1000 diag(1, 2, 1e-14): the third direction is 1e-14 of the largest, below
+    RANK_TOL = 1e-13, so the step is the least-squares one on the first two (``A x =
+    (1, 1, 0)``, residual 1) and the solve fails, rather than a step of 1e14 that no
+    double-precision product can check."""
+    A = 1000.0 * np.diag([1.0, 2.0, 1e-14])
+    b = np.ones(3)
+    x, ok, _ = fgmres(lambda v: A @ v, b, tol=1e-12, restart=3, maxiter=1)
+    assert not ok and np.abs(x).max() < 1e-2
+    np.testing.assert_allclose(A @ x, [1.0, 1.0, 0.0], rtol=0, atol=1e-9)
+
+
+def test_a_non_finite_residual_at_the_end_of_a_cycle_ends_the_solve_as_failed():
+    """Finite Krylov products, then a NaN when the cycle's iterate is checked: the solve
+    stops with that iterate and a failure."""
+    calls = []
+
+    def matvec(v):
+        calls.append(1)
+        return np.full_like(v, np.nan) if len(calls) == 3 else 2.0 * v + np.roll(v, 1)
+
+    x, ok, its = fgmres(matvec, np.arange(1.0, 6.0), tol=1e-300, restart=2, maxiter=5)
+    assert not ok and its == 2 and len(calls) == 3 and np.isfinite(x).all()
+
+
 def test_the_solver_counts_iterations_over_calls_and_solves_small_systems_densely():
     A, b = _near_identity(n=30)
     dense = LinearSolver(30, 1e-12)
