@@ -50,6 +50,7 @@ default_tests() {
             tests/unit/test_mutation_kills_active_set.py \
             tests/unit/test_mutation_friction_solve.py tests/unit/test_friction.py tests/unit/test_bem_friction_cli.py \
             tests/unit/test_bem_displacement_control.py::test_frictional_rolling_under_displacement_control ;;
+        bem/linear.py) echo tests/unit/test_linear.py ;;
         bem/contact.py) echo tests/unit/test_mutation_kills_contact.py tests/unit/test_contact.py \
             tests/unit/test_properties_contact.py tests/unit/test_bem_displacement_control.py ;;
         fem_reference/forms.py|fem_reference/postprocess.py|fem_reference/solve.py)
