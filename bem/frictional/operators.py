@@ -72,14 +72,15 @@ class RollingOperators:
         for i, a in enumerate((N, Sx, Sy)):
             f[i] = np.asarray(a, float).reshape(Ky, Kx)
         # the 2-D transforms one axis at a time, skipping the embedding's zero rows on the
-        # way in and the rows off the grid on the way out (40-55 % less work than rfft2)
-        F = sfft.fft(sfft.rfft(f, n=emb[1], axis=-1, workers=-1), n=emb[0], axis=-2, workers=-1,
-                     overwrite_x=True)
-        acc = spectra[:, 0] * F[0]
-        acc += spectra[:, 1] * F[1]
-        acc += spectra[:, 2] * F[2]
-        rows = sfft.ifft(acc, axis=-2, workers=-1, overwrite_x=True)[:, :Ky]
-        return sfft.irfft(rows, n=emb[1], axis=-1, workers=-1)[:, :, :Kx]
+        # way in and the rows off the grid on the way out (40-55 % less work than rfft2),
+        # on every core
+        with sfft.set_workers(-1):
+            F = sfft.fft(sfft.rfft(f, n=emb[1]), n=emb[0], axis=-2, overwrite_x=True)
+            acc = spectra[:, 0] * F[0]
+            acc += spectra[:, 1] * F[1]
+            acc += spectra[:, 2] * F[2]
+            rows = sfft.ifft(acc, axis=-2, overwrite_x=True)[:, :Ky]
+            return sfft.irfft(rows, n=emb[1])[:, :, :Kx]
 
     def fields(self, N, Sx, Sy):
         """Downward deflection (m) and upwind strains ``du/dx, dv/dx`` (-) on the grid from
