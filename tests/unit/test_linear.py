@@ -16,7 +16,6 @@ class Dense:
 
     def __init__(self, A, b, precondition=None):
         self.A, self.b, self.n = A, b, b.size
-        self.products = 0
         if precondition is not None:
             self.precondition = precondition
 
@@ -24,13 +23,13 @@ class Dense:
         return self.A
 
     def matvec(self, x):
-        self.products += 1
         return self.A @ x
 
 
-def _near_identity(n=120, eps=1e-4, scale=1.0, seed=3):
+def _near_identity(n=120, eps=1e-4, seed=3):
+    """``I + eps R`` (``R`` Gaussian, scaled by ``1/sqrt(n)``) and a Gaussian ``b``."""
     rng = np.random.default_rng(seed)
-    return scale * (np.eye(n) + eps * rng.normal(size=(n, n)) / np.sqrt(n)), rng.normal(size=n)
+    return np.eye(n) + eps * rng.normal(size=(n, n)) / np.sqrt(n), rng.normal(size=n)
 
 
 def test_a_zero_right_hand_side_is_solved_by_zero_in_no_iteration():
