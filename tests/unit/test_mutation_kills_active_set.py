@@ -141,6 +141,26 @@ CASES = {
 }
 
 
+def _q_cycle(p):
+    """The layer of the two tests below: every node at the base answer (slip at angle
+    ``p["angle"]``), and q (at l = 0.9 R: a rigid creep of 10 %) with its own normal force
+    ``p["n_q"]`` and slip speed ``p["w_q"]`` along its direction in the contact, its own
+    clearance ``p["h_q"]`` out of it."""
+    ell = np.full(SIZE, R)
+    ell[Q] = 0.9 * R
+
+    def respond(state):
+        N, S, h, w = _base(state, p["angle"])
+        if state.contact[Q]:
+            e = state.direction[Q]
+            N[Q], S[Q], w[Q] = p["n_q"], MU * p["n_q"] * e, p["w_q"] * e
+        else:
+            h[Q] = p["h_q"]
+        return N, S, h, w
+
+    return ScriptedLayer(respond, ell)
+
+
 @pytest.mark.parametrize("case", CASES, ids=list(CASES))
 def test_a_cycle_without_stick_nodes_is_rejected_and_reports_its_figures(monkeypatch, case):
     """Omega given, every contact node in slip (q joins in slip: a rigid creep of 10 % at
@@ -149,21 +169,7 @@ def test_a_cycle_without_stick_nodes_is_rejected_and_reports_its_figures(monkeyp
     violation 1e-2 > 1e-2 set_tol, or the misfit 0.5 > set_tol; step 15: the reversed slip
     0.5 > set_tol, or the misfit), so the run raises at step 15 naming that state's figures."""
     p = CASES[case]
-    ell = np.full(SIZE, R)
-    ell[Q] = 0.9 * R
-
-    def respond(state):
-        N, S, h, w = _base(state, p["angle"])
-        if state.contact[Q]:
-            e = state.direction[Q]
-            N[Q] = p["n_q"]
-            S[Q] = MU * p["n_q"] * e
-            w[Q] = p["w_q"] * e
-        else:
-            h[Q] = p["h_q"]
-        return N, S, h, w
-
-    layer = ScriptedLayer(respond, ell)
+    layer = _q_cycle(p)
     lines = []
     with pytest.raises(FrictionNotConverged) as info:
         layer.run(monkeypatch, _state(C0 + [Q]), lines=lines)
@@ -187,18 +193,7 @@ def test_the_same_cycles_are_accepted_within_a_larger_set_tol(monkeypatch, case)
     violation 1e-2 <= 1e-2 set_tol at set_tol = 2, misfit 0.5 <= 2), the cycle is accepted
     there and the run returns that state's solution (q out of the contact)."""
     p = CASES[case]
-    ell = np.full(SIZE, R)
-    ell[Q] = 0.9 * R
-
-    def respond(state):
-        N, S, h, w = _base(state, p["angle"])
-        if state.contact[Q]:
-            N[Q], S[Q], w[Q] = p["n_q"], MU * p["n_q"] * state.direction[Q], p["w_q"] * state.direction[Q]
-        else:
-            h[Q] = p["h_q"]
-        return N, S, h, w
-
-    layer = ScriptedLayer(respond, ell)
+    layer = _q_cycle(p)
     out = layer.run(monkeypatch, _state(C0 + [Q]), friction=Friction(MU, "omega", omega=OMEGA, set_tol=2.0))
     assert len(out.history) == len(layer.states) == 10
     assert not out.state.contact[Q] and out.gap[Q] == pytest.approx(p["h_q"], rel=1e-6)
