@@ -440,39 +440,50 @@ def test_frictionless_start_slips_where_the_rigid_creep_exceeds_one_percent():
     np.testing.assert_allclose(st.slope, [0, 0, 3.0 / (0.5 * 4.0), 2.5 / (0.5 * 5.0), 0, 0], rtol=1e-15)
 
 
-def test_coarse_start_from_the_nearest_upstream_coarse_node():
-    """Fine node (j, i) reads coarse node (ceil(j/2), ceil(i/2)); it slips when it is in the
-    fine contact, that coarse node slipped with |S| > 0 and |w| > 0, along S/|S| with
-    k = |w| / (mu N0); otherwise it sticks (in contact)."""
+def test_coarse_start_slips_where_any_coarse_neighbour_slips():
+    """Fine node (j, i) reads the coarse nodes (floor or ceil of j/2, floor or ceil of i/2):
+    one, two or four of them. It slips when it is in the fine contact and the sum ``S`` of
+    the slipping ones' forces and the largest of their slip speeds ``|w|`` are > 0, along
+    S/|S| with k = |w| / (mu N0); otherwise it sticks (in contact)."""
     from bem.frictional.starts import coarse_start
 
     rng = np.random.default_rng(8)
     cy, cx = 4, 5
     shape = (2 * cy - 1, 2 * cx - 1)
     cc = rng.random((cy, cx)) < 0.8
-    cs = cc & (rng.random((cy, cx)) < 0.4)
+    cs = cc & (rng.random((cy, cx)) < 0.6)
     fx, fy = rng.normal(size=(cy, cx)), rng.normal(size=(cy, cx))
     wx, wy = rng.normal(size=(cy, cx)), rng.normal(size=(cy, cx))
-    fx[0, 1] = fy[0, 1] = 0.0  # slipping with no force: sticks
-    wx[1, 1] = wy[1, 1] = 0.0  # slipping at rest: sticks
-    cc[0, 1] = cc[1, 1] = True
-    cs[0, 1] = cs[1, 1] = False
+    cc[0, 0] = cc[0, 1] = cc[1, 1] = True
+    cs[0, 0] = cs[0, 1] = cs[1, 1] = False
+    fx[0, 1] = fy[0, 1] = 0.0  # slipping with no force
+    wx[1, 1] = wy[1, 1] = 0.0  # slipping at rest
+    fx[0, 0], fy[0, 0] = 0.0, 0.0  # fine (0, 0) reads only coarse (0, 0): sticks
     res = types.SimpleNamespace(force_x=fx, force_y=fy, slip_x=wx, slip_y=wy, contact=cc, stick=cs)
     N0 = np.where(rng.random(shape) < 0.85, rng.uniform(0.5, 2.0, shape), 0.0).ravel()
+    N0[0] = 1.0
     mu = 0.4
     st = coarse_start(res, shape, N0, mu)
+    kinds = set()
     for j in range(shape[0]):
         for i in range(shape[1]):
-            p, c = j * shape[1] + i, (math.ceil(j / 2), math.ceil(i / 2))
-            S, w = np.array([fx[c], fy[c]]), np.array([wx[c], wy[c]])
-            slips = N0[p] > 0 and cc[c] and not cs[c] and np.hypot(*S) > 0 and np.hypot(*w) > 0
+            p = j * shape[1] + i
+            near = {(a, b) for a in (j // 2, math.ceil(j / 2)) for b in (i // 2, math.ceil(i / 2))}
+            slipping = [c for c in near if cc[c] and not cs[c]]
+            S = sum((np.array([fx[c], fy[c]]) for c in slipping), np.zeros(2))
+            w = max((math.hypot(wx[c], wy[c]) for c in slipping), default=0.0)
+            slips = N0[p] > 0 and np.hypot(*S) > 0 and w > 0
+            kinds.add((len(near), slips))
             assert st.contact[p] == (N0[p] > 0)
             assert st.stick[p] == (N0[p] > 0 and not slips), (j, i)
             if slips:
-                np.testing.assert_allclose(st.direction[p], S / np.hypot(*S), rtol=1e-15)
-                assert st.slope[p] == pytest.approx(np.hypot(*w) / (mu * N0[p]), rel=1e-15)
+                np.testing.assert_allclose(st.direction[p], S / np.hypot(*S), rtol=1e-14)
+                assert st.slope[p] == pytest.approx(w / (mu * N0[p]), rel=1e-15)
             else:
                 assert not st.direction[p].any() and st.slope[p] == 0.0
+    assert st.stick[0]
+    # one, two and four neighbours, each both slipping and sticking
+    assert {(1, True), (2, True), (4, True), (2, False), (4, False)} <= kinds
     assert (~st.stick & st.contact).sum() >= 5
 
 
