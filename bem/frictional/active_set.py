@@ -109,8 +109,12 @@ class LinearSolves:
 
 
 def run_active_set(setup: RollingSetup, friction: Friction, start: SetState, solves: LinearSolves,
-                   progress: Callable[[str], None] | None = None) -> ActiveSetResult:
+                   progress: Callable[[str], None] | None = None, settle: float | None = None) -> ActiveSetResult:
     """Kalker's active-set iteration from the sets ``start`` (see the module docstring).
+
+    With ``settle`` (-) it ends as soon as the sets repeat and the slip misfit is at most
+    ``settle``, without the tight solve: for a coarse level whose solution only starts the
+    fine grid's iteration (its sets, slip directions and slip speeds).
 
     Raises
     ------
@@ -162,7 +166,7 @@ def run_active_set(setup: RollingSetup, friction: Friction, start: SetState, sol
         if reentry:
             join_slip |= v.add & (v.wmag > 0) & dropped
         dropped |= v.drop
-        if not changes and misfit <= friction.direction_tol and tight:
+        if not changes and (misfit <= friction.direction_tol and tight or settle is not None and misfit <= settle):
             break
         new_c, new_s = _next_sets(setup, v, contact, stick, N, join_slip, careful and changes)
         e_full, k_full = _next_directions(setup, v, contact, new_c & ~new_s, N, Sx, Sy)

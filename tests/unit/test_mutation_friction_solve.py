@@ -328,11 +328,11 @@ def test_failed_coarse_start_falls_back_to_all_stick(big_kernels, monkeypatch):
     real = fs.run_active_set
     starts = []
 
-    def first_fails(setup, friction, start, solves, progress=None):
+    def first_fails(setup, friction, start, solves, progress=None, settle=None):
         starts.append((setup.ops.grid.shape, start))
         if setup.ops.grid.shape == (25, 25) and len([s for s in starts if s[0] == (25, 25)]) == 1:
             raise FrictionNotConverged("planted")
-        return real(setup, friction, start, solves, progress)
+        return real(setup, friction, start, solves, progress, settle)
 
     monkeypatch.setattr(fs, "run_active_set", first_fails)
     lines = []
@@ -1044,3 +1044,33 @@ def test_cone_test_has_a_margin_of_1e_10(kernels):
             run_active_set(again, Friction(mu, "torque", max_iter=2), stuck.state, LinearSolves(1000), lines.append)
         n_slip = int(re.search(r", \+(\d+) slip, ", lines[0])[1])
         assert (n_slip >= 1) if slips else (n_slip == 0), lines[0]  # 2: the node and its mirror in y
+
+
+def test_coarse_level_settles_without_the_tight_solve(big_kernels, monkeypatch):
+    """The coarse level ends as soon as its sets repeat with a slip misfit of at most
+    COARSE_SETTLE: its history is the converged one's, cut short; the fine grid converges
+    fully (settle None) to the same state."""
+    import bem.frictional.solve as fs
+
+    real = fs.run_active_set
+    calls = []
+
+    def spy(setup, friction, start, solves, progress=None, settle=None):
+        out = real(setup, friction, start, solves, progress, settle)
+        calls.append((setup.ops.grid.shape, settle, out.history))
+        return out
+
+    monkeypatch.setattr(fs, "run_active_set", spy)
+    p, friction = problem(grid=BIG), MODES[3]  # omega = 0.99 V / R: the coarse level slips
+    settled, _ = solve_friction(p, friction, kernels=big_kernels, energy=False)
+    (cshape, csettle, chist), (fshape, fsettle, _) = calls
+    assert (cshape, csettle, fshape, fsettle) == ((13, 13), 0.1, (25, 25), None) and fs.COARSE_SETTLE == 0.1
+    assert friction.direction_tol < chist[-1][2] <= 0.1
+    calls.clear()
+    monkeypatch.setattr(fs, "COARSE_SETTLE", None)
+    full, _ = solve_friction(p, friction, kernels=big_kernels, energy=False)
+    converged = calls[0][2]
+    assert calls[0][1] is None and converged[-1][2] <= friction.direction_tol
+    assert chist == converged[:len(chist)] and len(chist) < len(converged)
+    assert np.array_equal(full.stick, settled.stick) and np.array_equal(full.contact, settled.contact)
+    np.testing.assert_allclose(full.force_x, settled.force_x, rtol=0, atol=1e-9 * full.force.max())
