@@ -26,7 +26,7 @@ to one-node updates; a cycle there raises :class:`ContactNotConverged`.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Callable
 
 import numpy as np
@@ -127,6 +127,10 @@ class NormalContact(ContactFigures):
     rolling_resistance : float
         ``R_r = sum F_i arm_i`` (N), the paper's ``sum F_i x_i / R`` for round indenters.
     record : SolveRecord
+    coarse : NormalContact or None
+        The same problem solved on every other node (:func:`coarse_grid`), whose contact
+        set started this solve; ``None`` when there was none. The frictional solver's own
+        coarse levels reuse it instead of solving it again.
     """
 
     grid: Grid
@@ -137,6 +141,7 @@ class NormalContact(ContactFigures):
     load: float
     rolling_resistance: float
     record: SolveRecord
+    coarse: NormalContact | None = field(default=None, repr=False, compare=False)
 
     def summary(self) -> dict:
         """The scalars (SI units), the grid and the solve record as a JSON-ready dict; the
@@ -257,25 +262,26 @@ def _coarse_start(operator, s, reachable, load, indentation, dense_limit, rtol):
     The subgrid's operator is the kernel table read at even offsets (the exact compliance
     between those nodes); its contact set, upsampled and widened by one node, starts the
     active set on the full grid, which then needs a few iterations instead of tens.
-    Returns ``None`` when the grid is small (< 625 nodes) or even-sized.
+    Returns the start set and the coarse solution, or ``(None, None)`` when the grid is
+    small (< 625 nodes) or even-sized, or the coarse solve fails.
     """
     grid = operator.grid
     Ky, Kx = grid.shape
     coarse = coarse_grid(grid)
     if coarse is None:
-        return None
+        return None, None
     sub = ComplianceOperator(coarse, operator.kernel[::2, ::2])
     prof = np.where(reachable, s, np.inf).reshape(Ky, Kx)[::2, ::2]
     if indentation is not None and not (prof < indentation).any():
-        return None  # the indentation reaches no coarse node
+        return None, None  # the indentation reaches no coarse node
     try:
         res = solve_normal(sub, prof, load=load, indentation=indentation, dense_limit=dense_limit, rtol=rtol)
     except ContactError:
-        return None
+        return None, None
     up = np.zeros((Ky, Kx), dtype=bool)
     up[::2, ::2] = res.contact
     grown = binary_dilation(up, structure=np.ones((3, 3), dtype=bool))  # fill and widen
-    return grown.ravel() & reachable
+    return grown.ravel() & reachable, res
 
 
 def solve_normal(
@@ -342,7 +348,7 @@ def solve_normal(
     else:
         first = reachable
     solve = LinearSolver(dense_limit, rtol, restart=100, maxiter=100, error=ContactNotConverged)
-    start = _coarse_start(operator, s, reachable, load, indentation, dense_limit, rtol)
+    start, coarse = _coarse_start(operator, s, reachable, load, indentation, dense_limit, rtol)
     active = first.copy() if start is None or not start.any() else start
     seen: set[bytes] = set()
     careful = False
@@ -401,7 +407,8 @@ def solve_normal(
     rr = float((F * np.asarray(arm).ravel()).sum()) if arm is not None else math.nan
     record = SolveRecord(it, tuple(history), "gmres" if solve.used_gmres else "dense", solve.iterations, resid)
     shape = grid.shape
-    return NormalContact(grid, F.reshape(shape), u.reshape(shape), h.reshape(shape), float(d), float(F.sum()), rr, record)
+    return NormalContact(grid, F.reshape(shape), u.reshape(shape), h.reshape(shape), float(d), float(F.sum()), rr, record,
+                         coarse)
 
 
 # former private names, kept for callers that imported them

@@ -9,7 +9,7 @@ from typing import Callable
 
 import numpy as np
 
-from ..contact import ContactError, coarse_grid, solve_normal
+from ..contact import ContactError, NormalContact, coarse_grid, solve_normal
 from ..energy import viscous_dissipation
 from ..friction import Friction, FrictionalContact, FrictionNotConverged, FrictionRecord, LoadingUnreachable
 from ..kinematics import indenter_radius, rolling_radius
@@ -77,7 +77,8 @@ def solve_friction(problem: Problem, friction: Friction, progress: Callable[[str
 
 def solve_rolling(ops: RollingOperators, profile, arm, ell, radius: float, speed: float,
                   friction: Friction, *, load=None, indentation=None,
-                  progress: Callable[[str], None] | None = None, settle: float | None = None) -> FrictionalContact:
+                  progress: Callable[[str], None] | None = None, settle: float | None = None,
+                  normal: NormalContact | None = None) -> FrictionalContact:
     """Frictional steady rolling/sliding on prepared operators.
 
     Parameters
@@ -99,6 +100,9 @@ def solve_rolling(ops: RollingOperators, profile, arm, ell, radius: float, speed
     settle : float, optional
         End once the sets repeat with a slip misfit of at most this (-), without the tight
         solve (a coarse level of the start, :data:`COARSE_SETTLE`); ``None``: converge.
+    normal : NormalContact, optional
+        The frictionless solution of the same problem on this grid when already known (a
+        coarse level's: the fine frictionless solve's ``coarse``); solved otherwise.
 
     Raises
     ------
@@ -112,8 +116,9 @@ def solve_rolling(ops: RollingOperators, profile, arm, ell, radius: float, speed
     # the frictionless start, by dense LU up to the frictional solve's own limit (3
     # unknowns a node), GMRES above (at 61 x 61, 1977 contact nodes, dense LU took 0.9 s
     # of a 1.5 s solve, GMRES 0.05 s)
-    normal = solve_normal(ops.op("ww"), profile, load=load, indentation=indentation,
-                          dense_limit=friction.dense_limit // 3)
+    if normal is None or normal.grid.shape != g.shape:
+        normal = solve_normal(ops.op("ww"), profile, load=load, indentation=indentation,
+                              dense_limit=friction.dense_limit // 3)
     N0 = normal.force.ravel()
     cons = constraint(friction.mode, arm, ell, radius)
     check_reachable(friction.mode, friction.mu, cons, N0)
@@ -128,7 +133,7 @@ def solve_rolling(ops: RollingOperators, profile, arm, ell, radius: float, speed
 
     solves = LinearSolves(friction.dense_limit)
     starts = [frictionless_start(N0, ell, speed, friction)]
-    coarse = _from_coarse_grid(setup, friction, N0, progress)
+    coarse = _from_coarse_grid(setup, friction, N0, progress, normal.coarse)
     if coarse is not None:
         starts.insert(0, coarse)
     try:
@@ -150,12 +155,13 @@ def solve_rolling(ops: RollingOperators, profile, arm, ell, radius: float, speed
     return _finish(setup, friction, out, solves)
 
 
-def _from_coarse_grid(setup: RollingSetup, friction: Friction, N0, progress):
+def _from_coarse_grid(setup: RollingSetup, friction: Friction, N0, progress, normal=None):
     """Start sets from the same problem on every other node (recursively, as the
     frictionless solver's start, :func:`bem.frictional.starts.coarse_start`): most of
     the stick/slip border is then in place and the fine grid needs a few iterations for
     the rest and for the slip directions. ``None`` below 625 nodes, on even-sized grids
-    and when the coarse solve fails."""
+    and when the coarse solve fails. ``normal``: the coarse grid's frictionless solution
+    when known (the fine frictionless solve's ``coarse``, the same solve)."""
     ops = setup.ops
     Ky, Kx = ops.grid.shape
     coarse = coarse_grid(ops.grid)
@@ -169,7 +175,7 @@ def _from_coarse_grid(setup: RollingSetup, friction: Friction, N0, progress):
     try:
         res = solve_rolling(ops.coarse(coarse), fine(setup.profile), fine(setup.arm), fine(setup.ell), setup.radius,
                             setup.speed, friction, load=setup.load, indentation=setup.indentation,
-                            progress=(lambda m: progress(label + m)) if progress else None, settle=COARSE_SETTLE)
+                            progress=(lambda m: progress(label + m)) if progress else None, settle=COARSE_SETTLE, normal=normal)
     except ContactError:
         return None
     return coarse_start(res, (Ky, Kx), N0, friction.mu)

@@ -95,7 +95,7 @@ def test_an_emptied_set_restarts_from_the_deepest_node(operators, monkeypatch):
     """The old first set (every reachable node) puts all 2025 nodes in tension at 1 N: the
     next set is the deepest node alone, from which the iteration reaches the contact."""
     by_load = _both(operators["rest"], Sphere(0.02), 1.0)[0]
-    monkeypatch.setattr(bem.contact, "_coarse_start", lambda op, s, reachable, *args: reachable.copy())
+    monkeypatch.setattr(bem.contact, "_coarse_start", lambda op, s, reachable, *args: (reachable.copy(), None))
     X, Y = GRID.coordinates()
     res = solve_normal(operators["rest"], Sphere(0.02).profile(X, Y), indentation=by_load.indentation)
     assert res.record.history[:2] == (GRID.nodes_x * GRID.nodes_y, 1)

@@ -301,6 +301,36 @@ def test_coarse_start_runs_and_ends_on_the_direct_state(big_kernels, monkeypatch
     np.testing.assert_allclose(direct.force_x, res.force_x, rtol=0, atol=1e-9 * res.force.max())
 
 
+def test_the_coarse_level_reuses_the_fine_frictionless_solve_s_coarse_solution(big_kernels, monkeypatch):
+    """One frictionless solve for the two levels: the coarse level is handed the fine
+    solve's ``coarse`` (the same problem on every other node), and a coarse level that
+    computes its own gets the same forces."""
+    import bem.frictional.solve as fs
+
+    real_normal, real_rolling = fs.solve_normal, fs.solve_rolling
+    normals, handed = [], []
+
+    def count(op, *args, **kw):
+        out = real_normal(op, *args, **kw)
+        normals.append(out)
+        return out
+
+    def spy(ops, *args, normal=None, **kw):
+        handed.append((ops.grid.shape, normal))
+        return real_rolling(ops, *args, normal=normal, **kw)
+
+    monkeypatch.setattr(fs, "solve_normal", count)
+    monkeypatch.setattr(fs, "solve_rolling", spy)
+    friction = Friction(0.3)
+    res, _ = solve_friction(problem(grid=BIG), friction, kernels=big_kernels, energy=False)
+    assert [n.grid.shape for n in normals] == [(25, 25)]
+    assert [shape for shape, _ in handed] == [(25, 25), (13, 13)]
+    assert handed[0][1] is None and handed[1][1] is normals[0].coarse is not None
+    own = real_normal(ComplianceOperator(normals[0].coarse.grid, big_kernels["ww"][::2, ::2]),
+                      Sphere(R).profile(*normals[0].coarse.grid.coordinates()), load=20.0, dense_limit=333)
+    np.testing.assert_array_equal(own.force, normals[0].coarse.force)
+
+
 def test_coarse_solve_that_fails_is_skipped(big_kernels, monkeypatch):
     """A ContactError on the coarse grid: no coarse start, the all-stick start solves."""
     import bem.frictional.solve as fs

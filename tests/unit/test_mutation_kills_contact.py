@@ -185,6 +185,10 @@ def test_multilevel_start_is_the_widened_coarse_contact(elastic_mid):
     start = binary_dilation(up, structure=np.ones((3, 3), bool))
     assert r.record.history[0] == int(start.sum()) < MID.nodes_x * MID.nodes_y
     assert r.record.iterations <= 4  # measured 2-3: the start is within one node of the answer
+    # the result carries that coarse solution (and it carries its own: none below 625 nodes)
+    assert r.coarse.grid == coarse_grid(MID) and r.coarse.coarse is None
+    np.testing.assert_array_equal(r.coarse.force, coarse.force)
+    assert r.coarse.indentation == coarse.indentation
     # under displacement control, the coarse problem at the same d
     rd = solve_normal(op, s, indentation=r.indentation)
     cd = solve_normal(ComplianceOperator(coarse_grid(MID), op.kernel[::2, ::2]), s[::2, ::2],
@@ -216,7 +220,7 @@ def test_an_indentation_below_every_coarse_node_falls_back_to_the_overlap(elasti
     d = 2e-6
     r = solve_normal(op, s, indentation=d)
     assert r.record.history[0] == int((s < d).sum())
-    assert r.indentation == d and r.load > 0
+    assert r.indentation == d and r.load > 0 and r.coarse is None
 
 
 @pytest.mark.parametrize("kw, message", [
