@@ -18,7 +18,7 @@ from ..spectral import BLOCKS
 from .active_set import ActiveSetResult, LinearSolves, run_active_set
 from .loading import check_reachable, constraint
 from .operators import RollingOperators
-from .starts import coarse_start, continuation, frictionless_start
+from .starts import coarse_start, continuation, frictionless_start, saturation_creepage
 from .system import RollingSetup
 
 __all__ = ["solve_friction", "solve_rolling", "COARSE_SETTLE"]
@@ -132,7 +132,8 @@ def solve_rolling(ops: RollingOperators, profile, arm, ell, radius: float, speed
                        np.zeros(size, bool), (), "dense", 0)
 
     solves = LinearSolves(friction.dense_limit)
-    starts = [frictionless_start(N0, ell, speed, friction)]
+    saturation = saturation_creepage(N0 > 0, g.shape, g.spacing_x, friction.mu, radius)
+    starts = [frictionless_start(N0, ell, speed, friction, saturation)]
     coarse = _from_coarse_grid(setup, friction, N0, progress, normal.coarse)
     if coarse is not None:
         starts.insert(0, coarse)

@@ -440,6 +440,36 @@ def test_frictionless_start_slips_where_the_rigid_creep_exceeds_one_percent():
     np.testing.assert_allclose(st.slope, [0, 0, 3.0 / (0.5 * 4.0), 2.5 / (0.5 * 5.0), 0, 0], rtol=1e-15)
 
 
+def test_frictionless_start_sticks_below_the_saturation_creepage():
+    """With ``saturation`` a node slips only where |creep| exceeds max(1 %, saturation) V."""
+    from bem.frictional.starts import frictionless_start
+
+    V_, om = 100.0, 1.0
+    ell = np.array([99.0, 97.0, 97.0, 95.0, 104.0, 90.0])  # creep 1, 3, 3, 5, -4, 10
+    N0 = np.array([1.0, 2.0, 4.0, 5.0, 3.0, 0.0])
+    sat = np.array([0.0, 0.029, 0.03, 0.04, 0.05, 0.0])
+    st = frictionless_start(N0, ell, V_, Friction(0.5, "omega", omega=om), sat)
+    np.testing.assert_array_equal(st.stick, [1, 0, 1, 0, 1, 0])
+    np.testing.assert_array_equal(st.direction, [[0, 0], [1, 0], [0, 0], [1, 0], [0, 0], [0, 0]])
+    np.testing.assert_allclose(st.slope, [0, 3.0 / (0.5 * 2.0), 0, 5.0 / (0.5 * 5.0), 0, 0], rtol=1e-15)
+    # a scalar saturation, and none below 1 %
+    st = frictionless_start(N0, ell, V_, Friction(0.5, "omega", omega=om), 0.045)
+    np.testing.assert_array_equal(st.stick, [1, 1, 1, 0, 1, 0])
+    assert np.array_equal(frictionless_start(N0, ell, V_, Friction(0.5, "omega", omega=om), 0.001).stick,
+                          frictionless_start(N0, ell, V_, Friction(0.5, "omega", omega=om)).stick)
+
+
+def test_saturation_creepage_is_carters_mu_a_over_r_by_grid_row():
+    from bem.frictional.starts import saturation_creepage
+
+    contact = np.zeros((3, 5), bool)
+    contact[0, 1:4] = True  # 3 nodes: a = 1.5 spacing
+    contact[1, [0, 2]] = True  # 2 nodes (not contiguous): a = 1 spacing
+    sat = saturation_creepage(contact.ravel(), (3, 5), 2e-4, 0.3, 0.02)
+    want = 0.3 * np.array([3e-4, 2e-4, 0.0]) / 0.02
+    np.testing.assert_allclose(sat.reshape(3, 5), np.repeat(want[:, None], 5, 1), rtol=1e-14)
+
+
 def test_coarse_start_slips_where_any_coarse_neighbour_slips():
     """Fine node (j, i) reads the coarse nodes (floor or ceil of j/2, floor or ceil of i/2):
     one, two or four of them. It slips when it is in the fine contact and the sum ``S`` of
