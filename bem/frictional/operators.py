@@ -3,6 +3,8 @@ densely on node subsets (SI units: kernels in m/N, differenced kernels in 1/N)."
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 import scipy.fft as sfft
 
@@ -26,16 +28,21 @@ class RollingOperators:
     grid : Grid
     kernels : dict
         The nine blocks of :func:`bem.spectral.influence_kernels` for ``grid`` (m/N).
+    tables : dict, optional
+        The kernel and differenced tables when already known (a :meth:`window`'s).
     """
 
-    def __init__(self, grid: Grid, kernels: dict):
+    def __init__(self, grid: Grid, kernels: dict, tables: dict | None = None):
         self.grid = grid
         self.kernels = kernels
-        self.tables = {b: kernels[b] for b in ("ww", "wu", "wv")}
-        for b in DIFFERENCED:
-            self.tables["d" + b] = upwind_table(kernels[b], grid.spacing_x)
+        if tables is None:
+            tables = {b: kernels[b] for b in ("ww", "wu", "wv")}
+            for b in DIFFERENCED:
+                tables["d" + b] = upwind_table(kernels[b], grid.spacing_x)
+        self.tables = tables
         self._ops: dict = {}
         self._stacked: dict = {}
+        self._windows: dict = {}
 
     @property
     def diagonal(self) -> float:
@@ -93,6 +100,25 @@ class RollingOperators:
         """Horizontal surface displacements ``u, v`` (m)."""
         return self._convolve((((-1, "uw"), (1, "uu"), (1, "uv")),
                                ((-1, "vw"), (1, "vu"), (1, "vv"))), N, Sx, Sy)
+
+    def window(self, shape: tuple[int, int]) -> "RollingOperators":
+        """The operators of a box of ``shape = (K_y', K_x')`` nodes of the grid: the tables
+        read at the offsets such a box spans (every table, the differenced ones included,
+        as the whole grid's). By translation invariance :meth:`fields` of forces inside the
+        box, read inside the box, equals the whole grid's there, on an embedding of about
+        ``(2 K_y') x (2 K_x')`` instead of ``(2 K_y) x (2 K_x)``; kept per shape."""
+        Ky, Kx = self.grid.shape
+        By, Bx = shape
+        if not (1 <= By <= Ky and 1 <= Bx <= Kx):
+            raise ValueError(f"a window of {shape} nodes must fit in the grid's {self.grid.shape}")
+        if (By, Bx) == (Ky, Kx):
+            return self
+        if shape not in self._windows:
+            cut = (slice(Ky - By, Ky + By - 1), slice(Kx - Bx, Kx + Bx - 1))
+            self._windows[shape] = RollingOperators(replace(self.grid, nodes_x=Bx, nodes_y=By),
+                                                    {b: k[cut] for b, k in self.kernels.items()},
+                                                    {b: t[cut] for b, t in self.tables.items()})
+        return self._windows[shape]
 
     def coarse(self, grid: Grid) -> "RollingOperators":
         """The operators of every other node (``grid`` from :func:`bem.contact.coarse_grid`):

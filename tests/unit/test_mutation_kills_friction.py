@@ -157,6 +157,32 @@ def test_fields_and_displacements_are_the_signed_block_sums(shape_in):
             _close(got.ravel(), want)
 
 
+@pytest.mark.parametrize("box, at", [((3, 4), (1, 2)), ((1, 7), (4, 0)), ((5, 1), (0, 6)), ((2, 2), (0, 0))])
+def test_a_window_is_the_whole_grid_s_product_inside_a_box(box, at):
+    """fields and displacements of forces inside a box (shape ``box``, corner ``at``),
+    read inside it, equal the whole grid's; the window is kept per shape, the whole
+    grid's shape is the operators themselves, and a box larger than the grid is an error."""
+    from bem.frictional.operators import RollingOperators
+
+    kern = _random_kernels(SMALL, seed=12)
+    ops = RollingOperators(SMALL, kern)
+    w = ops.window(box)
+    assert w.grid.shape == box and w.grid.spacing_x == SMALL.spacing_x and ops.window(box) is w
+    rng = np.random.default_rng(13)
+    N, Sx, Sy = (np.zeros(SMALL.shape) for _ in range(3))
+    inside = (slice(at[0], at[0] + box[0]), slice(at[1], at[1] + box[1]))
+    for f in (N, Sx, Sy):
+        f[inside] = rng.normal(size=box)
+    full, part = ops.fields(N, Sx, Sy), w.fields(N[inside], Sx[inside], Sy[inside])
+    _close(part, full[(slice(None),) + inside])
+    _close(w.displacements(N[inside], Sx[inside], Sy[inside]), ops.displacements(N, Sx, Sy)[(slice(None),) + inside])
+    assert w.diagonal == ops.diagonal
+    assert ops.window(SMALL.shape) is ops
+    for bad in ((0, 3), (3, SMALL.nodes_x + 1)):  # SMALL: 5 x 7
+        with pytest.raises(ValueError, match=r"^a window of \(.*\) nodes must fit in the grid's \(5, 7\)$"):
+            ops.window(bad)
+
+
 def test_coarse_operators_are_every_other_node():
     """The coarse level (bem.contact.coarse_grid, 25 x 25 -> 13 x 13) reads the kernels at
     even offsets: its dense blocks between coarse nodes are the fine ones between the
