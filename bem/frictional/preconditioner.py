@@ -30,12 +30,15 @@ GMRES iterations).
 
 from __future__ import annotations
 
+import os
+from concurrent.futures import ThreadPoolExecutor
+
 import numpy as np
 from scipy.linalg import lapack
 
 from .system import SetSystem, force_rows
 
-__all__ = ["LinePreconditioner", "LU_FROM", "SPLIT_FROM", "tangential_inverse"]
+__all__ = ["LinePreconditioner", "LU_FROM", "SPLIT_FROM", "THREAD_FROM", "tangential_inverse"]
 
 #: lines of this many contact nodes or more keep LU factors (``getrf``: a quarter of the
 #: flops of an inverse) applied by ``getrs`` line by line, without the padded batch
@@ -58,6 +61,13 @@ SPLIT_FROM = 96
 #: machine), 513 x 513 988 -> 823; 0.5 rad 334 at 257, 0.1 rad as 0.2; also refreshing
 #: on a slope changed 4x: no change
 TURN = 0.2
+#: an application splits its line groups over two threads when the blocks it reads take
+#: this many bytes or more (numpy's batched products release the GIL). Measured, one
+#: application on the converged state, one thread -> two: section 11 at 257 x 257 (blocks
+#: of 190 MB) 17.3 -> 10.7 ms, at 129 x 129 (17 MB) 1.83 -> 0.97 ms, issue-11 case at
+#: 121 x 121 (15 MB) 1.31 -> 1.19 ms; at 61 x 61 (2 MB) 0.18 -> 0.40 ms: the thread's
+#: hand-over costs more than it saves
+THREAD_FROM = 4_000_000
 
 
 class LinePreconditioner:
@@ -82,10 +92,14 @@ class LinePreconditioner:
     default): the products are memory-bound on large grids (257 x 257: 36 -> 18 ms an
     application) and the memory halves; the flexible GMRES of :func:`bem.linear.fgmres`
     keeps every preconditioned vector, so the rounding of the products costs no accuracy
-    (the same iteration counts were measured in double and single precision).
+    (the same iteration counts were measured in double and single precision). With
+    ``threads`` an application whose blocks take :data:`THREAD_FROM` bytes or more runs
+    its line groups on two threads (the same result: each line is written by one thread).
     """
 
-    def __init__(self, pad: int = 8, dtype=np.float32, lu_from: int | None = None, turn: float = TURN):
+    def __init__(self, pad: int = 8, dtype=np.float32, lu_from: int | None = None, turn: float = TURN,
+                 threads: bool = True):
+        self.threads = threads
         self._cache: dict = {}
         self._built: dict = {}
         self._normal: dict = {}
@@ -154,21 +168,34 @@ class LinePreconditioner:
         ext = np.zeros(n + 1, self.dtype)
         getrs = lapack.sgetrs if self.dtype == np.float32 else lapack.dgetrs
 
-        def precondition(r):
-            ext[:n] = r
-            out = np.empty(n + 1)
-            for idx_n, idx_t, inv_n, inv_t, coup in batches:
+        def apply(part, out):
+            for idx_n, idx_t, inv_n, inv_t, coup in part[0]:
                 N = np.matmul(inv_n, ext[idx_n][:, :, None])[:, :, 0]
                 rt = ext[idx_t]
                 rt[:, :N.shape[1]] -= coup[:, :N.shape[1]] * N
                 out[idx_n] = N
                 out[idx_t] = np.matmul(inv_t, rt[:, :, None])[:, :, 0]
-            for J, idx_t, ((lu_n, piv_n), (lu_t, piv_t), coup) in long_lines:
+            for J, idx_t, ((lu_n, piv_n), (lu_t, piv_t), coup) in part[1]:
                 N = getrs(lu_n, piv_n, ext[J])[0]
                 rt = ext[idx_t]
                 rt[:J.size] -= coup * N
                 out[J] = N
                 out[idx_t] = getrs(lu_t, piv_t, rt)[0]
+
+        # on two threads when the blocks are large: the products are memory-bound and one
+        # core does not draw the machine's bandwidth (see THREAD_FROM)
+        two = self.threads and (os.cpu_count() or 1) > 1 and _nbytes(batches, long_lines) >= THREAD_FROM
+        parts = _halves(batches, long_lines) if two else None
+
+        def precondition(r):
+            ext[:n] = r
+            out = np.empty(n + 1)
+            if parts is None:
+                apply((batches, long_lines), out)
+            else:
+                job = _second_thread().submit(apply, parts[1], out)
+                apply(parts[0], out)
+                job.result()
             if system.free_d:
                 out[system.iD] = r[system.iD]
             if system.free_om:
@@ -212,6 +239,36 @@ class LinePreconditioner:
                 raise np.linalg.LinAlgError(f"singular line block of {m} contact nodes (getrf info {info})")
             factors.append((lu, piv))
         return factors[0], factors[1], coup.astype(lu_dtype)
+
+
+def _nbytes(batches, long_lines) -> int:
+    """Bytes of the inverses and factors that one application reads."""
+    return (sum(inv_n.nbytes + inv_t.nbytes for _, _, inv_n, inv_t, _ in batches)
+            + sum(lu_n.nbytes + lu_t.nbytes for _, _, ((lu_n, _), (lu_t, _), _) in long_lines))
+
+
+def _halves(batches, long_lines):
+    """The groups and long lines in two parts of about equal bytes (largest first, each to
+    the lighter part)."""
+    items = [([b], []) for b in batches] + [([], [ln]) for ln in long_lines]
+    parts, load = (([], []), ([], [])), [0, 0]
+    for b, ln in sorted(items, key=lambda it: -_nbytes(*it)):
+        k = int(load[1] < load[0])
+        parts[k][0].extend(b)
+        parts[k][1].extend(ln)
+        load[k] += _nbytes(b, ln)
+    return parts
+
+
+def _second_thread() -> ThreadPoolExecutor:
+    """One worker thread, started on first use and kept."""
+    global _POOL
+    if _POOL is None:
+        _POOL = ThreadPoolExecutor(1, thread_name_prefix="line-preconditioner")
+    return _POOL
+
+
+_POOL: ThreadPoolExecutor | None = None
 
 
 def _turned(old, new, turn: float) -> bool:

@@ -299,6 +299,35 @@ def test_line_preconditioner_is_the_inverse_of_its_line_blocks(kernels, dtype, t
     assert pre.factorised == len(set(system.Cj))
 
 
+@pytest.mark.parametrize("lu_from", [1000, 5])
+def test_line_preconditioner_on_two_threads_gives_the_same_result(kernels, monkeypatch, lu_from):
+    """With THREAD_FROM lowered to 0 the groups and long lines split into two parts of
+    about equal bytes, each line in exactly one, and the result is bit-identical to one
+    thread's; with threads=False (or on a single core) it stays on one."""
+    import bem.frictional.preconditioner as P
+
+    system = _system(kernels)
+    x = np.random.default_rng(3).normal(size=system.n)
+    one = P.LinePreconditioner(lu_from=lu_from, pad=1, threads=False)
+    one.attach(system)
+    want = system.precondition(x)
+    monkeypatch.setattr(P, "THREAD_FROM", 0)
+    two = P.LinePreconditioner(lu_from=lu_from, pad=1)
+    two.attach(system)
+    np.testing.assert_array_equal(system.precondition(x), want)
+    batches = two._batches[1]
+    if lu_from == 1000:  # every line in a batched group
+        parts = P._halves(batches, [])
+        assert sorted(map(id, parts[0][0] + parts[1][0])) == sorted(map(id, batches)) and len(batches) > 2
+        sizes = [P._nbytes(*p) for p in parts]
+        assert abs(sizes[0] - sizes[1]) <= max(P._nbytes([b], []) for b in batches) and min(sizes) > 0
+    monkeypatch.setattr(P.os, "cpu_count", lambda: 1)
+    monkeypatch.setattr(P, "_second_thread", lambda: pytest.fail("a second thread on one core"))
+    single = P.LinePreconditioner(lu_from=lu_from, pad=1)
+    single.attach(system)
+    np.testing.assert_array_equal(system.precondition(x), want)
+
+
 def test_line_preconditioner_keeps_unchanged_lines_and_refactors_changed_ones(kernels):
     """A second attach with the same sets inverts nothing; flipping one node between stick
     and slip re-inverts only its line, and the result is again the exact inverse of the new
