@@ -21,7 +21,7 @@ from .operators import RollingOperators
 from .starts import coarse_start, continuation, frictionless_start, saturation_creepage
 from .system import RollingSetup
 
-__all__ = ["solve_friction", "solve_rolling", "COARSE_SETTLE"]
+__all__ = ["solve_friction", "solve_rolling", "COARSE_SETTLE", "START_RTOL"]
 
 #: a coarse level of the start ends once its sets repeat and its slip misfit is at most
 #: this (-), without the tight solve (:func:`run_active_set`'s ``settle``): the fine grid
@@ -31,6 +31,14 @@ __all__ = ["solve_friction", "solve_rolling", "COARSE_SETTLE"]
 #: level 5 / 87 -> 3 / 44 and 31 x 31 level 11 / 122 -> 9 / 91; section 11 at 129 x 129,
 #: 65 x 65 level 7 / 108 -> 5 / 71 and 33 x 33 level 6 / 90 -> 4 / 56
 COARSE_SETTLE = 0.1
+#: GMRES tolerance of the frictionless solve that starts a frictional one (-, relative to
+#: ``|b|``; the frictionless result itself, ``mu = 0``, keeps ``solve_normal``'s 1e-11):
+#: the start reads its contact set and forces. Measured (frictionless solve alone, 1e-11
+#: -> 1e-8: GMRES iterations, the same contact sets): issue-11 case 61 x 61 47 -> 35,
+#: 121 x 121 45 -> 33; section 11 at 129 x 129 66 -> 45, 257 x 257 70 -> 46 (1.05 ->
+#: 0.69 s); 1e-6 kept the sets too (24-31 iterations), 1e-4 made the active set cycle at
+#: 129 x 129
+START_RTOL = 1e-8
 
 
 def solve_friction(problem: Problem, friction: Friction, progress: Callable[[str], None] | None = None,
@@ -118,7 +126,7 @@ def solve_rolling(ops: RollingOperators, profile, arm, ell, radius: float, speed
     # of a 1.5 s solve, GMRES 0.05 s)
     if normal is None or normal.grid.shape != g.shape:
         normal = solve_normal(ops.op("ww"), profile, load=load, indentation=indentation,
-                              dense_limit=friction.dense_limit // 3)
+                              dense_limit=friction.dense_limit // 3, rtol=START_RTOL if friction.mu > 0 else 1e-11)
     N0 = normal.force.ravel()
     cons = constraint(friction.mode, arm, ell, radius)
     check_reachable(friction.mode, friction.mu, cons, N0)

@@ -308,11 +308,12 @@ def test_the_coarse_level_reuses_the_fine_frictionless_solve_s_coarse_solution(b
     import bem.frictional.solve as fs
 
     real_normal, real_rolling = fs.solve_normal, fs.solve_rolling
-    normals, handed = [], []
+    normals, handed, rtols = [], [], []
 
     def count(op, *args, **kw):
         out = real_normal(op, *args, **kw)
         normals.append(out)
+        rtols.append(kw["rtol"])
         return out
 
     def spy(ops, *args, normal=None, **kw):
@@ -323,12 +324,17 @@ def test_the_coarse_level_reuses_the_fine_frictionless_solve_s_coarse_solution(b
     monkeypatch.setattr(fs, "solve_rolling", spy)
     friction = Friction(0.3)
     res, _ = solve_friction(problem(grid=BIG), friction, kernels=big_kernels, energy=False)
-    assert [n.grid.shape for n in normals] == [(25, 25)]
+    assert [n.grid.shape for n in normals] == [(25, 25)] and rtols == [fs.START_RTOL] == [1e-8]
     assert [shape for shape, _ in handed] == [(25, 25), (13, 13)]
     assert handed[0][1] is None and handed[1][1] is normals[0].coarse is not None
     own = real_normal(ComplianceOperator(normals[0].coarse.grid, big_kernels["ww"][::2, ::2]),
-                      Sphere(R).profile(*normals[0].coarse.grid.coordinates()), load=20.0, dense_limit=333)
+                      Sphere(R).profile(*normals[0].coarse.grid.coordinates()), load=20.0, dense_limit=333,
+                      rtol=1e-8)
     np.testing.assert_array_equal(own.force, normals[0].coarse.force)
+    # without friction the frictionless solve is the result: solve_normal's own tolerance
+    normals.clear(), rtols.clear()
+    solve_friction(problem(grid=BIG), Friction(0.0, "towed"), kernels=big_kernels, energy=False)
+    assert rtols == [1e-11]
 
 
 def test_coarse_solve_that_fails_is_skipped(big_kernels, monkeypatch):
