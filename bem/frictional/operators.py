@@ -12,10 +12,14 @@ from ..grid import Grid
 from ..kinematics import upwind_table
 from ..operator import ComplianceOperator
 
-__all__ = ["RollingOperators", "DIFFERENCED"]
+__all__ = ["RollingOperators", "DIFFERENCED", "FIELDS"]
 
 #: blocks whose upwind x-difference enters the slip velocity (rows u and v)
 DIFFERENCED = ("uw", "uu", "uv", "vw", "vu", "vv")
+#: the signed blocks of :meth:`RollingOperators.fields`: deflection, then the upwind strains
+FIELDS = (((1, "ww"), (-1, "wu"), (-1, "wv")),
+          ((-1, "duw"), (1, "duu"), (1, "duv")),
+          ((-1, "dvw"), (1, "dvu"), (1, "dvv")))
 
 
 class RollingOperators:
@@ -64,20 +68,18 @@ class RollingOperators:
         jc, ic = np.divmod(cols, Kx)
         return self.tables[name][(jr[:, None] - jc[None, :]) + Ky - 1, (ir[:, None] - ic[None, :]) + Kx - 1]
 
-    def _convolve(self, names, N, Sx, Sy):
+    def _convolve(self, names, f):
         """``sum_j sign_j K_j * f_j`` for each row of ``names`` (block names with signs,
-        ``-`` for the normal force ``-N``): one batched forward transform of the three
-        force fields, the signed spectra (stacked once per set of rows) multiplied in, one
-        batched inverse transform; an array ``(rows, K_y, K_x)``."""
-        Ky, Kx = self.grid.shape
+        ``-`` for the normal force ``-N``) and the stacked force fields ``f`` ``(3, K_y,
+        K_x)``: one batched forward transform, the signed spectra (stacked once per set of
+        rows) multiplied in, one batched inverse transform; an array ``(rows, K_y, E_x)``
+        whose first ``K_x`` columns are the grid's (``E_x`` the embedding's width)."""
+        Ky = self.grid.nodes_y
         emb = self.op("ww").embedding
         spectra = self._stacked.get(names)
         if spectra is None:
             spectra = np.stack([np.stack([sign * self.op(name).spectrum for sign, name in row]) for row in names])
             self._stacked[names] = spectra
-        f = np.empty((3, Ky, Kx))
-        for i, a in enumerate((N, Sx, Sy)):
-            f[i] = np.asarray(a, float).reshape(Ky, Kx)
         # the 2-D transforms one axis at a time, skipping the embedding's zero rows on the
         # way in and the rows off the grid on the way out (40-55 % less work than rfft2),
         # on every core
@@ -87,19 +89,35 @@ class RollingOperators:
             acc += spectra[:, 1] * F[1]
             acc += spectra[:, 2] * F[2]
             rows = sfft.ifft(acc, axis=-2, overwrite_x=True)[:, :Ky]
-            return sfft.irfft(rows, n=emb[1])[:, :, :Kx]
+            return sfft.irfft(rows, n=emb[1])
+
+    def _stack(self, N, Sx, Sy):
+        Ky, Kx = self.grid.shape
+        f = np.empty((3, Ky, Kx))
+        for i, a in enumerate((N, Sx, Sy)):
+            f[i] = np.asarray(a, float).reshape(Ky, Kx)
+        return f
 
     def fields(self, N, Sx, Sy):
         """Downward deflection (m) and upwind strains ``du/dx, dv/dx`` (-) on the grid from
         the normal forces ``N`` (compressive) and tangential forces ``S_x, S_y`` (N)."""
-        return self._convolve((((1, "ww"), (-1, "wu"), (-1, "wv")),
-                               ((-1, "duw"), (1, "duu"), (1, "duv")),
-                               ((-1, "dvw"), (1, "dvu"), (1, "dvv"))), N, Sx, Sy)
+        return self._convolve(FIELDS, self._stack(N, Sx, Sy))[:, :, :self.grid.nodes_x]
+
+    def fields_on(self, nodes: np.ndarray, forces: np.ndarray) -> np.ndarray:
+        """:meth:`fields` ``(3, k)`` at the flat node indices ``nodes`` (``k``) of the forces
+        ``forces = (N, S_x, S_y)`` ``(3, k)`` on those nodes, 0 elsewhere: the product of
+        an iterative solve, without full-grid copies in and out."""
+        Ky, Kx = self.grid.shape
+        f = np.zeros((3, Ky * Kx))
+        f[:, nodes] = forces
+        out = self._convolve(FIELDS, f.reshape(3, Ky, Kx))
+        j, i = np.divmod(nodes, Kx)
+        return out.reshape(3, -1)[:, j * out.shape[2] + i]
 
     def displacements(self, N, Sx, Sy):
         """Horizontal surface displacements ``u, v`` (m)."""
         return self._convolve((((-1, "uw"), (1, "uu"), (1, "uv")),
-                               ((-1, "vw"), (1, "vu"), (1, "vv"))), N, Sx, Sy)
+                               ((-1, "vw"), (1, "vu"), (1, "vv"))), self._stack(N, Sx, Sy))[:, :, :self.grid.nodes_x]
 
     def window(self, shape: tuple[int, int]) -> "RollingOperators":
         """The operators of a box of ``shape = (K_y', K_x')`` nodes of the grid: the tables

@@ -136,7 +136,7 @@ class SetSystem:
         # forces live there and the rows read there
         j0, i0 = self.Cj.min(), self.Ci.min()
         self.box = ops.window((int(self.Cj.max() - j0) + 1, int(self.Ci.max() - i0) + 1))
-        self.Bj, self.Bi = self.Cj - j0, self.Ci - i0
+        self.in_box = (self.Cj - j0) * self.box.grid.nodes_x + (self.Ci - i0)
         nC = self.nC = C.size
         self.free_d, self.free_om = setup.load is not None, setup.omega is None
         self.n = 3 * nC + self.free_d + self.free_om
@@ -218,7 +218,5 @@ class SetSystem:
         return np.concatenate([N[C], Sx[C], Sy[C], glob])
 
     def matvec(self, x):
-        f = np.zeros((3,) + self.box.grid.shape)
-        f[:, self.Bj, self.Bi] = x[:3 * self.nC].reshape(3, self.nC)
-        gap, sx, sy = self.box.fields(f[0], f[1], f[2])[:, self.Bj, self.Bi, None]
+        gap, sx, sy = self.box.fields_on(self.in_box, x[:3 * self.nC].reshape(3, self.nC))[:, :, None]
         return self.rows(gap, self.ax * sx, self.ax * sy, x[:, None])[:, 0]

@@ -155,6 +155,12 @@ def test_fields_and_displacements_are_the_signed_block_sums(shape_in):
         expect = [-M["uw"] @ n + M["uu"] @ x + M["uv"] @ y, -M["vw"] @ n + M["vu"] @ x + M["vv"] @ y]
         for got, want in zip(disp, expect):
             _close(got.ravel(), want)
+    # on a node subset: the forces there (0 elsewhere), the fields read there
+    nodes = rng.choice(SMALL.nodes_x * SMALL.nodes_y, 13, replace=False)
+    forces = rng.normal(size=(3, 13))
+    N, Sx, Sy = (np.zeros(SMALL.nodes_x * SMALL.nodes_y) for _ in range(3))
+    N[nodes], Sx[nodes], Sy[nodes] = forces
+    _close(ops.fields_on(nodes, forces), ops.fields(N, Sx, Sy).reshape(3, -1)[:, nodes])
 
 
 @pytest.mark.parametrize("box, at", [((3, 4), (1, 2)), ((1, 7), (4, 0)), ((5, 1), (0, 6)), ((2, 2), (0, 0))])
