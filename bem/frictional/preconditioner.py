@@ -38,7 +38,7 @@ from scipy.linalg import lapack
 
 from .system import SetSystem, force_rows
 
-__all__ = ["LinePreconditioner", "LU_FROM", "SPLIT_FROM", "THREAD_FROM", "tangential_inverse"]
+__all__ = ["LinePreconditioner", "LU_FROM", "SPLIT_FROM", "THREAD_FROM", "BUILD_FROM", "tangential_inverse"]
 
 #: lines of this many contact nodes or more keep LU factors (``getrf``: a quarter of the
 #: flops of an inverse) applied by ``getrs`` line by line, without the padded batch
@@ -68,6 +68,10 @@ TURN = 0.2
 #: 121 x 121 (15 MB) 1.31 -> 1.19 ms; at 61 x 61 (2 MB) 0.18 -> 0.40 ms: the thread's
 #: hand-over costs more than it saves
 THREAD_FROM = 4_000_000
+#: :meth:`LinePreconditioner.attach` inverts the lines it must (re)build on two threads
+#: when their inversions take about this many flops or more (``8 m^3`` a line of ``m``
+#: nodes: the ``2 m x 2 m`` tangential block)
+BUILD_FROM = 1e8
 
 
 class LinePreconditioner:
@@ -120,23 +124,43 @@ class LinePreconditioner:
         slip_pos[system.B] = np.arange(system.B.size)
         cache, groups, keys, long_lines, built, normal = {}, {}, [], [], {}, {}
         refreshed = False
+        plan = []  # per line: J, stick pattern, nodes, key, LU or not, slip law, blocks (None: to build)
         for J in lines:
             st = system.stick[J]
             nodes = system.C[J].tobytes()
             key = nodes + st.tobytes()
             keys.append(key)
-            lu = J.size >= self.lu_from
             pair = self._cache.get(key)
             p = slip_pos[J[~st]]
             law = (system.dir_x[p], system.dir_y[p])
             if pair is not None and _turned(self._built[key], law, self.turn):
                 pair, refreshed = None, True
-            if pair is None:
-                pair = self._inverses(system, J, st, slip_pos, self.dtype if lu else None, self._normal.get(nodes))
-                self.factorised += 1
-                built[key] = law
-            else:
-                built[key] = self._built[key]
+            plan.append([J, st, nodes, key, J.size >= self.lu_from, law, pair])
+        todo = [line for line in plan if line[6] is None]
+
+        def build(part):
+            for line in part:
+                J, st, nodes, _, lu = line[:5]
+                line[6] = self._inverses(system, J, st, slip_pos, self.dtype if lu else None, self._normal.get(nodes))
+
+        # the lines' inversions on two threads when they are large (see BUILD_FROM)
+        flops = sum(8.0 * line[0].size ** 3 for line in todo)
+        if self.threads and (os.cpu_count() or 1) > 1 and flops >= BUILD_FROM:
+            halves, load = ([], []), [0.0, 0.0]
+            for line in sorted(todo, key=lambda ln: -ln[0].size):
+                k = int(load[1] < load[0])
+                halves[k].append(line)
+                load[k] += line[0].size ** 3
+            job = _second_thread().submit(build, halves[1])
+            build(halves[0])
+            job.result()
+        else:
+            build(todo)
+        self.factorised += len(todo)
+        fresh = {id(line) for line in todo}
+        for line in plan:
+            J, st, nodes, key, lu, law, pair = line
+            built[key] = law if id(line) in fresh else self._built[key]
             cache[key] = pair
             # the normal block depends on the line's nodes alone: kept (own copy) for a
             # line whose stick pattern or slip directions change

@@ -307,9 +307,10 @@ def test_line_preconditioner_is_the_inverse_of_its_line_blocks(kernels, dtype, t
 
 @pytest.mark.parametrize("lu_from", [1000, 5])
 def test_line_preconditioner_on_two_threads_gives_the_same_result(kernels, monkeypatch, lu_from):
-    """With THREAD_FROM lowered to 0 the groups and long lines split into two parts of
-    about equal bytes, each line in exactly one, and the result is bit-identical to one
-    thread's; with threads=False (or on a single core) it stays on one."""
+    """With THREAD_FROM and BUILD_FROM lowered to 0 the lines are inverted on two threads
+    and the groups and long lines applied in two parts of about equal bytes, each line in
+    exactly one: the result is bit-identical to one thread's, every line inverted once;
+    with threads=False (or on a single core) it stays on one."""
     import bem.frictional.preconditioner as P
 
     system = _system(kernels)
@@ -318,9 +319,11 @@ def test_line_preconditioner_on_two_threads_gives_the_same_result(kernels, monke
     one.attach(system)
     want = system.precondition(x)
     monkeypatch.setattr(P, "THREAD_FROM", 0)
+    monkeypatch.setattr(P, "BUILD_FROM", 0)
     two = P.LinePreconditioner(lu_from=lu_from, pad=1)
     two.attach(system)
     np.testing.assert_array_equal(system.precondition(x), want)
+    assert two.factorised == one.factorised == len(set(system.Cj))
     batches = two._batches[1]
     if lu_from == 1000:  # every line in a batched group
         parts = P._halves(batches, [])
