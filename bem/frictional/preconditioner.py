@@ -98,7 +98,9 @@ class LinePreconditioner:
     keeps every preconditioned vector, so the rounding of the products costs no accuracy
     (the same iteration counts were measured in double and single precision). With
     ``threads`` an application whose blocks take :data:`THREAD_FROM` bytes or more runs
-    its line groups on two threads (the same result: each line is written by one thread).
+    its line groups on two threads, and :meth:`attach` inverts the lines it rebuilds on two
+    threads when they take :data:`BUILD_FROM` flops or more (the same results: each line
+    is built and applied by one thread).
     """
 
     def __init__(self, pad: int = 8, dtype=np.float32, lu_from: int | None = None, turn: float = TURN,

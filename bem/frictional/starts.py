@@ -45,10 +45,11 @@ def saturation_creepage(contact: np.ndarray, shape: tuple[int, int], spacing_x: 
                         radius: float) -> np.ndarray:
     """Carter's creepage of full sliding ``mu a / R`` (-) at each node, ``a`` (m) half the
     length of the contact along ``x`` on the node's grid row (``contact`` flat, bool, on a
-    grid of ``shape`` with node spacing ``spacing_x``, m), ``R`` = ``radius`` (m): a rolling
-    cylinder of radius ``R`` and contact half-width ``a`` slides over its whole contact at
-    creepage ``mu a / R`` and has a stick zone below it (Johnson, Contact Mechanics,
-    section 8.3). A start heuristic per row of the 3-D contact, not a result."""
+    grid of ``shape`` with node spacing ``spacing_x``, m), ``R`` = ``radius`` (m): in
+    Carter's solution a rolling cylinder of radius ``R`` and contact half-width ``a``
+    slides over its whole contact from a creepage of about ``mu a / R`` on and keeps a
+    stick zone below it (Johnson, Contact Mechanics, ch. 8; the factor depends on the
+    elastic constants). A start heuristic per row of the 3-D contact, not a result."""
     Ky, Kx = shape
     half = 0.5 * spacing_x * contact.reshape(Ky, Kx).sum(1)
     return np.repeat(mu * half / radius, Kx)
