@@ -74,20 +74,19 @@ def coarse_start(coarse_result, shape: tuple[int, int], N0: np.ndarray, mu: floa
     res = coarse_result
     coarse_slip = res.contact & ~res.stick
     speed = np.hypot(res.slip_x, res.slip_y)
-    count = np.zeros(shape, int)
+    # sums over the slipping neighbours: none leaves S = 0 and |w| = 0, a stick node
     Sx, Sy, wmag = np.zeros(shape), np.zeros(shape), np.zeros(shape)
     for jy in (np.arange(Ky) // 2, (np.arange(Ky) + 1) // 2):
         for ix in (np.arange(Kx) // 2, (np.arange(Kx) + 1) // 2):
             near = np.ix_(jy, ix)
             s = coarse_slip[near]
-            count += s
             Sx += np.where(s, res.force_x[near], 0.0)
             Sy += np.where(s, res.force_y[near], 0.0)
             wmag = np.maximum(wmag, np.where(s, speed[near], 0.0))
     Sx, Sy, wmag = Sx.ravel(), Sy.ravel(), wmag.ravel()
     smag = np.hypot(Sx, Sy)
     contact = N0 > 0
-    slip = contact & (count.ravel() > 0) & (smag > 0) & (wmag > 0)
+    slip = contact & (smag > 0) & (wmag > 0)
     direction = np.zeros((N0.size, 2))
     slope = np.zeros(N0.size)
     direction[slip] = np.stack([Sx, Sy], 1)[slip] / smag[slip, None]
