@@ -287,14 +287,21 @@ def _halves(batches, long_lines):
 
 
 def _second_thread() -> ThreadPoolExecutor:
-    """One worker thread, started on first use and kept."""
+    """One worker thread, started on first use and kept (a forked child starts its own:
+    the parent's thread does not exist there, and work handed to it would never run)."""
     global _POOL
     if _POOL is None:
         _POOL = ThreadPoolExecutor(1, thread_name_prefix="line-preconditioner")
     return _POOL
 
 
+def _forget_pool() -> None:
+    global _POOL
+    _POOL = None
+
+
 _POOL: ThreadPoolExecutor | None = None
+os.register_at_fork(after_in_child=_forget_pool)
 
 
 def _turned(old, new, turn: float) -> bool:

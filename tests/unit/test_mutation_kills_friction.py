@@ -1,6 +1,8 @@
 """bem.frictional.loading: each loading mode's equilibrium row against its definition, and
 the reachability check at its limits (exact arithmetic on small vectors, milliseconds)."""
 
+import os
+
 import numpy as np
 import pytest
 
@@ -335,6 +337,48 @@ def test_line_preconditioner_on_two_threads_gives_the_same_result(kernels, monke
     single = P.LinePreconditioner(lu_from=lu_from, pad=1)
     single.attach(system)
     np.testing.assert_array_equal(system.precondition(x), want)
+
+
+def _two_threads_in_child(system, x, want, pipe):
+    import bem.frictional.preconditioner as P
+
+    pre = P.LinePreconditioner(pad=1)
+    pre.attach(system)
+    pipe.send(bool(np.array_equal(system.precondition(x), want)))
+
+
+def test_a_forked_child_builds_and_applies_on_its_own_second_thread(kernels, monkeypatch):
+    """After the parent used its second thread, a forked child (multiprocessing's fork, as
+    in process pools) attaches and applies on two threads too: it starts its own thread
+    instead of handing work to the parent's, which does not exist in the child and would
+    never answer."""
+    import multiprocessing
+
+    import bem.frictional.preconditioner as P
+
+    if (os.cpu_count() or 1) < 2 or "fork" not in multiprocessing.get_all_start_methods():
+        pytest.skip("needs two cores and fork")
+    system = _system(kernels)
+    x = np.random.default_rng(4).normal(size=system.n)
+    one = P.LinePreconditioner(pad=1, threads=False)
+    one.attach(system)
+    want = system.precondition(x)
+    monkeypatch.setattr(P, "THREAD_FROM", 0)
+    monkeypatch.setattr(P, "BUILD_FROM", 0)
+    parent = P.LinePreconditioner(pad=1)
+    parent.attach(system)
+    np.testing.assert_array_equal(system.precondition(x), want)
+    assert P._POOL is not None  # the parent's thread is running
+    ctx = multiprocessing.get_context("fork")
+    receive, send = ctx.Pipe(duplex=False)
+    child = ctx.Process(target=_two_threads_in_child, args=(system, x, want, send))
+    child.start()
+    child.join(60)
+    alive = child.is_alive()
+    if alive:
+        child.kill()
+    assert not alive, "the child hung on the parent's thread"
+    assert child.exitcode == 0 and receive.poll(1) and receive.recv() is True
 
 
 def test_line_preconditioner_keeps_unchanged_lines_and_refactors_changed_ones(kernels):
