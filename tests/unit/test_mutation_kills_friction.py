@@ -339,6 +339,92 @@ def test_line_preconditioner_on_two_threads_gives_the_same_result(kernels, monke
     np.testing.assert_array_equal(system.precondition(x), want)
 
 
+class _Inline:
+    """A stand-in for the second thread: runs each job at once and records its argument."""
+
+    def __init__(self):
+        self.jobs = []
+
+    def submit(self, fn, part, *rest):
+        self.jobs.append(part)
+        fn(part, *rest)
+        return self
+
+    def result(self):
+        return None
+
+
+def test_two_threads_exactly_from_the_thresholds_with_two_cores(kernels, monkeypatch):
+    """The application goes to two threads when its blocks take THREAD_FROM bytes or more
+    and ``os.cpu_count()`` is 2 or more (unknown counts as one core); the build when its
+    lines take BUILD_FROM flops (8 m^3 a line) or more; the second thread gets the greedy
+    split: lines (groups) by decreasing size, each to the lighter half (m^3 or bytes),
+    ties to the first."""
+    import bem.frictional.preconditioner as P
+
+    system = _system(kernels)
+    x = np.random.default_rng(6).normal(size=system.n)
+    ref = P.LinePreconditioner(pad=1, threads=False)
+    ref.attach(system)
+    want = system.precondition(x)
+    nbytes = P._nbytes(ref._batches[1], [])
+    lines = [np.flatnonzero(system.Cj == j) for j in np.unique(system.Cj)]
+    flops = sum(8.0 * J.size ** 3 for J in lines)
+    for cores, bytes_from, build_from, applied, built in [
+            (2, nbytes, flops, True, True), (2, nbytes + 1, flops + 1, False, False),
+            (4, nbytes, flops + 1, True, False), (None, 0, 0, False, False), (1, 0, 0, False, False)]:
+        pool = _Inline()
+        monkeypatch.setattr(P, "_second_thread", lambda: pool)
+        monkeypatch.setattr(P.os, "cpu_count", lambda: cores)
+        monkeypatch.setattr(P, "THREAD_FROM", bytes_from)
+        monkeypatch.setattr(P, "BUILD_FROM", build_from)
+        pre = P.LinePreconditioner(pad=1)
+        pre.attach(system)
+        got = system.precondition(x)
+        np.testing.assert_array_equal(got, want)
+        build_jobs = [job for job in pool.jobs if isinstance(job, list) and job and isinstance(job[0], list)]
+        apply_jobs = [job for job in pool.jobs if isinstance(job, tuple)]
+        assert (len(build_jobs), len(apply_jobs)) == (int(built), int(applied)), (cores, bytes_from, build_from)
+        if built:  # the greedy split by m^3, largest first, ties to the first half
+            halves, load = ([], []), [0, 0]
+            for J in sorted(lines, key=lambda J: -J.size):
+                k = int(load[1] < load[0])
+                halves[k].append(J.size)
+                load[k] += J.size ** 3
+            assert sorted(line[0].size for line in build_jobs[0]) == sorted(halves[1])
+        if applied:  # the second part of _halves
+            second = P._halves(pre._batches[1], [])[1]
+            assert [id(g) for g in apply_jobs[0][0]] == [id(g) for g in second[0]] and apply_jobs[0][1] == []
+
+
+def _fake_group(nbytes):
+    return (None, None, np.zeros(nbytes, np.uint8), np.zeros(0, np.uint8), None)
+
+
+def _fake_long_line(n_normal, n_tangential):
+    return (None, None, ((np.zeros(n_normal, np.uint8), None), (np.zeros(n_tangential, np.uint8), None), None))
+
+
+def test_nbytes_and_halves_by_hand():
+    """_nbytes sums the inverses of the groups and the factors of the long lines; _halves
+    deals groups and long lines, largest first, to the lighter part, ties to the first."""
+    import bem.frictional.preconditioner as P
+
+    groups = [_fake_group(2), _fake_group(3)]
+    longs = [_fake_long_line(1, 4), _fake_long_line(2, 0)]
+    assert P._nbytes(groups, longs) == 2 + 3 + 5 + 2
+    assert P._nbytes([], []) == 0
+    # sizes 3, 2, 2, 1 (bytes): 3 -> first; 2 -> second; 2 -> second (2 < 3); 1 -> first (4 > 3)
+    a, b, c, d = _fake_group(3), _fake_group(2), _fake_long_line(1, 1), _fake_group(1)
+    first, second = P._halves([d, b, a], [c])
+    assert [id(g) for g in first[0]] == [id(a), id(d)] and first[1] == []
+    assert [id(g) for g in second[0]] == [id(b)] and [id(ln) for ln in second[1]] == [id(c)]
+    # sizes 2, 1, 1: 2 -> first; 1 -> second; 1 -> second (1 < 2)
+    a, b, c = _fake_group(2), _fake_group(1), _fake_group(1)
+    first, second = P._halves([b, a, c], [])
+    assert [id(g) for g in first[0]] == [id(a)] and [id(g) for g in second[0]] == [id(b), id(c)]
+
+
 def _two_threads_in_child(system, x, want, pipe):
     import bem.frictional.preconditioner as P
 
