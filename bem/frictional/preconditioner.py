@@ -148,11 +148,7 @@ class LinePreconditioner:
         # the lines' inversions on two threads when they are large (see BUILD_FROM)
         flops = sum(8.0 * line[0].size ** 3 for line in todo)
         if self.threads and (os.cpu_count() or 1) > 1 and flops >= BUILD_FROM:
-            halves, load = ([], []), [0.0, 0.0]
-            for line in sorted(todo, key=lambda ln: -ln[0].size):
-                k = int(load[1] < load[0])
-                halves[k].append(line)
-                load[k] += line[0].size ** 3
+            halves = _balanced(todo, lambda line: line[0].size ** 3)
             job = _second_thread().submit(build, halves[1])
             build(halves[0])
             job.result()
@@ -273,17 +269,22 @@ def _nbytes(batches, long_lines) -> int:
             + sum(lu_n.nbytes + lu_t.nbytes for _, _, ((lu_n, _), (lu_t, _), _) in long_lines))
 
 
-def _halves(batches, long_lines):
-    """The groups and long lines in two parts of about equal bytes (largest first, each to
-    the lighter part)."""
-    items = [([b], []) for b in batches] + [([], [ln]) for ln in long_lines]
-    parts, load = (([], []), ([], [])), [0, 0]
-    for b, ln in sorted(items, key=lambda it: -_nbytes(*it)):
+def _balanced(items, weight) -> tuple[list, list]:
+    """``items`` dealt to two lists of about equal total ``weight(item)``: the heaviest
+    first, each to the lighter list (ties to the first)."""
+    parts, load = ([], []), [0.0, 0.0]
+    for item in sorted(items, key=lambda it: -weight(it)):
         k = int(load[1] < load[0])
-        parts[k][0].extend(b)
-        parts[k][1].extend(ln)
-        load[k] += _nbytes(b, ln)
+        parts[k].append(item)
+        load[k] += weight(item)
     return parts
+
+
+def _halves(batches, long_lines):
+    """The groups and long lines in two parts ``(groups, long lines)`` of about equal bytes."""
+    items = [([b], []) for b in batches] + [([], [ln]) for ln in long_lines]
+    return tuple(([b for g, _ in part for b in g], [ln for _, lines in part for ln in lines])
+                 for part in _balanced(items, lambda it: _nbytes(*it)))
 
 
 def _second_thread() -> ThreadPoolExecutor:

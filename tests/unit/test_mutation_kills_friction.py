@@ -405,6 +405,18 @@ def _fake_long_line(n_normal, n_tangential):
     return (None, None, ((np.zeros(n_normal, np.uint8), None), (np.zeros(n_tangential, np.uint8), None), None))
 
 
+def test_balanced_deals_the_heaviest_first_to_the_lighter_list():
+    import bem.frictional.preconditioner as P
+
+    # 3 -> first; 2 -> second; 2 -> second (2 < 3); 1 -> first (4 > 3)
+    assert P._balanced([1, 2, 3, 2], float) == ([3, 1], [2, 2])
+    # 2 -> first; 1 -> second; 1 -> second (1 < 2); then a tie: 1 -> first
+    assert P._balanced([1, 2, 1, 1], float) == ([2, 1], [1, 1])
+    assert P._balanced([5], float) == ([5], []) and P._balanced([], float) == ([], [])
+    # the weight, not the item, orders and balances
+    assert P._balanced(["aaa", "b", "cc"], len) == (["aaa"], ["cc", "b"])
+
+
 def test_nbytes_and_halves_by_hand():
     """_nbytes sums the inverses of the groups and the factors of the long lines; _halves
     deals groups and long lines, largest first, to the lighter part, ties to the first."""
