@@ -409,11 +409,12 @@ def test_tangential_inverse_is_the_inverse_of_the_line_block(kernels, pattern):
 
 
 def test_line_preconditioner_refreshes_a_line_whose_slip_direction_turned(kernels):
-    """Same sets, one slip node's direction turned: by 0.1 rad (below ``TURN``, 0.2) the
+    """Same sets, one slip node's direction turned: by 0.15 rad (below ``TURN``, 0.2) the
     line keeps its blocks, built with the old direction (so the product is no longer the
-    exact inverse of the new blocks); by 0.3 rad only that line is inverted again and the
-    product is again the exact inverse of the new system's line blocks (uncoupled kernels,
-    contact on one grid row, as above)."""
+    exact inverse of the new blocks); by 0.25 rad, only 0.1 rad from the last attach's
+    direction but 0.25 from the one its blocks were built with, only that line is inverted
+    again and the product is again the exact inverse of the new system's line blocks
+    (uncoupled kernels, contact on one grid row, as above)."""
     from bem.frictional import SetState, SetSystem
     from bem.frictional.preconditioner import TURN, LinePreconditioner
 
@@ -435,7 +436,7 @@ def test_line_preconditioner_refreshes_a_line_whose_slip_direction_turned(kernel
     k = np.zeros(size)
     k[first.C[first.B]] = first.slope * V / first.ax
     x = np.random.default_rng(3).normal(size=first.n)
-    for angle, refreshed in ((0.1, False), (0.3, True)):
+    for angle, refreshed in ((0.15, False), (0.25, True)):
         c, s = np.cos(angle), np.sin(angle)
         e = e0.copy()
         e[node] = [c * e0[node, 0] - s * e0[node, 1], s * e0[node, 0] + c * e0[node, 1]]
