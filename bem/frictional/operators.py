@@ -46,6 +46,7 @@ class RollingOperators:
         self.tables = tables
         self._ops: dict = {}
         self._stacked: dict = {}
+        self._filters: dict = {}
         self._windows: dict = {}
 
     @property
@@ -74,22 +75,47 @@ class RollingOperators:
         K_x)``: one batched forward transform, the signed spectra (stacked once per set of
         rows) multiplied in, one batched inverse transform; an array ``(rows, K_y, E_x)``
         whose first ``K_x`` columns are the grid's (``E_x`` the embedding's width)."""
-        Ky = self.grid.nodes_y
-        emb = self.op("ww").embedding
         spectra = self._stacked.get(names)
         if spectra is None:
             spectra = np.stack([np.stack([sign * self.op(name).spectrum for sign, name in row]) for row in names])
             self._stacked[names] = spectra
-        # the 2-D transforms one axis at a time, skipping the embedding's zero rows on the
-        # way in and the rows off the grid on the way out (40-55 % less work than rfft2),
-        # on every core
         with sfft.set_workers(-1):
-            F = sfft.fft(sfft.rfft(f, n=emb[1]), n=emb[0], axis=-2, overwrite_x=True)
+            F = self._forward(f)
             acc = spectra[:, 0] * F[0]
             acc += spectra[:, 1] * F[1]
             acc += spectra[:, 2] * F[2]
-            rows = sfft.ifft(acc, axis=-2, overwrite_x=True)[:, :Ky]
-            return sfft.irfft(rows, n=emb[1])
+            return self._inverse(acc)
+
+    # the 2-D transforms one axis at a time, skipping the embedding's zero rows on the way
+    # in and the rows off the grid on the way out (40-55 % less work than rfft2), on every
+    # core (callers set the workers)
+    def _forward(self, f):
+        emb = self.op("ww").embedding
+        return sfft.fft(sfft.rfft(f, n=emb[1]), n=emb[0], axis=-2, overwrite_x=True)
+
+    def _inverse(self, F):
+        emb = self.op("ww").embedding
+        return sfft.irfft(sfft.ifft(F, axis=-2, overwrite_x=True)[:, :self.grid.nodes_y], n=emb[1])
+
+    def row_filter(self, power: float) -> np.ndarray:
+        """The spectra ``(3, E_y, E_x / 2 + 1)`` of ``(C_row / C) ** power`` for the blocks
+        ``ww, uu, vv`` on this grid's embedding (-): ``C`` the block's symbol, ``C_row``
+        that of its kernel cut to one grid row (``C`` averaged over ``k_y``), what a solve
+        on lines along ``x`` sees. Where ``|C|`` is below 1e-3 of its largest it is taken
+        as that floor. Kept per ``power``; see :mod:`bem.frictional.preconditioner`."""
+        if power not in self._filters:
+            Ky = self.grid.nodes_y
+            out = []
+            for name in ("ww", "uu", "vv"):
+                table = self.tables[name] if name in self.tables else self.kernels[name]
+                row = np.zeros_like(table)
+                row[Ky - 1] = table[Ky - 1]
+                full = self.op(name).spectrum
+                mag = np.abs(full)
+                full = np.where(mag < 1e-3 * mag.max(), 1e-3 * mag.max(), full)
+                out.append((ComplianceOperator(self.grid, row).spectrum / full) ** power)
+            self._filters[power] = np.stack(out)
+        return self._filters[power]
 
     def _stack(self, N, Sx, Sy):
         Ky, Kx = self.grid.shape
@@ -107,12 +133,26 @@ class RollingOperators:
         """:meth:`fields` ``(3, k)`` at the flat node indices ``nodes`` (``k``) of the forces
         ``forces = (N, S_x, S_y)`` ``(3, k)`` on those nodes, 0 elsewhere: the product of
         an iterative solve, without full-grid copies in and out."""
+        return self._gather(self._convolve(FIELDS, self._scatter(nodes, forces)), nodes)
+
+    def filter_on(self, nodes: np.ndarray, values: np.ndarray, spectra: np.ndarray) -> np.ndarray:
+        """The three rows of ``values`` ``(3, k)`` on the flat node indices ``nodes`` (``k``),
+        0 elsewhere, each multiplied in Fourier space by its row of ``spectra`` (e.g.
+        :meth:`row_filter`), read back at ``nodes``."""
+        with sfft.set_workers(-1):
+            F = self._forward(self._scatter(nodes, values))
+            F *= spectra
+            return self._gather(self._inverse(F), nodes)
+
+    def _scatter(self, nodes, values):
         Ky, Kx = self.grid.shape
         f = np.zeros((3, Ky * Kx))
-        f[:, nodes] = forces
-        out = self._convolve(FIELDS, f.reshape(3, Ky, Kx))
-        j, i = np.divmod(nodes, Kx)
-        return out.reshape(3, -1)[:, j * out.shape[2] + i]
+        f[:, nodes] = values
+        return f.reshape(3, Ky, Kx)
+
+    def _gather(self, out, nodes):
+        j, i = np.divmod(nodes, self.grid.nodes_x)
+        return out.reshape(out.shape[0], -1)[:, j * out.shape[2] + i]
 
     def displacements(self, N, Sx, Sy):
         """Horizontal surface displacements ``u, v`` (m)."""

@@ -10,10 +10,16 @@ run and component: 212 GMRES iterations on the converged 61 x 61 state of the
 benchmark case (``benchmarks/bem_friction_rolling.py``) and none converged in 4000 at
 121 x 121. The exact inverse of the system restricted to one grid row holds the running
 sum, the displacement ahead of each run and the slip rows of that row exactly; what it
-leaves out is the coupling between rows, smooth and well handled by GMRES: 66 and 73
-iterations on the same states. Blocks of two rows gave 42 and 62 iterations for four
-times the factorisation cost; applying the circulant step before or after the line
-solves made things worse (147-542).
+leaves out is the coupling between rows: 66 and 73 iterations on the same states. Blocks
+of two rows gave 42 and 62 iterations for four times the factorisation cost; applying
+the circulant step before or after the line solves made things worse (147-542).
+
+Why a filter after them. A line sees its own row's compliance only, the symbol averaged
+over ``k_y``, and so gets forces smooth in ``y`` too large and forces alternating from
+row to row too small; multiplying its forces in Fourier space by ``(C_row / C) ** p``
+(:data:`FILTER_POWER`, ``docs/derivations.md`` section 5) corrects that in the interior
+at the cost of two FFTs of the contact's box: GMRES iterations on converged states
+84 -> 38 at 257 x 257 and 105 -> 52 at 513 x 513 (section 11).
 
 Cost: per line of ``m`` contact nodes the inverses of an ``m x m`` and a ``2 m x 2 m``
 block (``O(K m^3)`` flops, ``O(K m^2)`` memory for ``K`` lines), and products with them
@@ -38,8 +44,23 @@ from scipy.linalg import lapack
 
 from .system import SetSystem, force_rows
 
-__all__ = ["LinePreconditioner", "LU_FROM", "SPLIT_FROM", "THREAD_FROM", "BUILD_FROM", "tangential_inverse"]
+__all__ = ["LinePreconditioner", "FILTER_POWER", "LU_FROM", "SPLIT_FROM", "THREAD_FROM", "BUILD_FROM", "tangential_inverse"]
 
+#: the lines' forces are multiplied, in Fourier space on the contact's box, by
+#: ``(C_row / C) ** FILTER_POWER`` per component (``ww``, ``uu``, ``vv``;
+#: :meth:`~bem.frictional.operators.RollingOperators.row_filter`; 0: off). A
+#: line solve sees only its own row's compliance ``C_row``, the symbol ``C`` averaged over
+#: ``k_y``: it overshoots forces smooth in ``y`` (whose displacement the neighbouring rows
+#: add to) and undershoots forces alternating from row to row, and the preconditioned
+#: operator's spectrum spreads from 0.12 to about 20 (section 11 at 129 x 129, 200 Arnoldi
+#: steps on the converged state), besides the run ends' outliers. The filter is the
+#: interior's exact correction at power 1; the run ends prefer less. Measured (GMRES
+#: iterations from zero to 1e-10 |b| on the converged fine state, lines alone -> power 0.3 /
+#: 0.5 / 0.6 / 0.75 / 1): section 11 at 129 x 129 67 -> 42 / 32 / 29 / 37 / 56, at 257 x 257
+#: 84 -> 38 (0.5) / 39 (0.6) / 44 (0.7); the issue-11 case at 121 x 121 63 -> 35 / 33 / 37
+#: (0.5 / 0.6 / 0.7). Before the lines instead of after, or on both sides: no better (129 x 129: 35 at 0.5;
+#: 0.3 on each side 39); the normal or the tangential components alone: 67 and 56
+FILTER_POWER = 0.5
 #: lines of this many contact nodes or more keep LU factors (``getrf``: a quarter of the
 #: flops of an inverse) applied by ``getrs`` line by line, without the padded batch
 #: copies; shorter lines keep inverses applied by batched products (one BLAS call per
@@ -100,12 +121,14 @@ class LinePreconditioner:
     ``threads`` an application whose blocks take :data:`THREAD_FROM` bytes or more runs
     its line groups on two threads, and :meth:`attach` inverts the lines it rebuilds on two
     threads when they take :data:`BUILD_FROM` flops or more (the same results: each line
-    is built and applied by one thread).
+    is built and applied by one thread). ``filter_power`` (default :data:`FILTER_POWER`, read
+    at construction; 0: the lines alone) sets the row filter applied after the lines.
     """
 
     def __init__(self, pad: int = 8, dtype=np.float32, lu_from: int | None = None, turn: float = TURN,
-                 threads: bool = True):
+                 threads: bool = True, filter_power: float | None = None):
         self.threads = threads
+        self.filter_power = FILTER_POWER if filter_power is None else filter_power
         self._cache: dict = {}
         self._built: dict = {}
         self._normal: dict = {}
@@ -209,6 +232,11 @@ class LinePreconditioner:
         two = self.threads and (os.cpu_count() or 1) > 1 and _nbytes(batches, long_lines) >= THREAD_FROM
         parts = _halves(batches, long_lines) if two else None
 
+        # the lines' forces through the row filter (see FILTER_POWER), on the contact's box
+        box, spectra = system.box, None
+        if self.filter_power:
+            spectra = box.row_filter(self.filter_power)
+
         def precondition(r):
             ext[:n] = r
             out = np.empty(n + 1)
@@ -218,6 +246,8 @@ class LinePreconditioner:
                 job = _second_thread().submit(apply, parts[1], out)
                 apply(parts[0], out)
                 job.result()
+            if spectra is not None:
+                out[:3 * nC] = box.filter_on(system.in_box, out[:3 * nC].reshape(3, nC), spectra).ravel()
             if system.free_d:
                 out[system.iD] = r[system.iD]
             if system.free_om:
