@@ -47,6 +47,7 @@ class RollingOperators:
         self._ops: dict = {}
         self._stacked: dict = {}
         self._filters: dict = {}
+        self._gathered: tuple = (None, 0, None)
         self._windows: dict = {}
 
     @property
@@ -97,13 +98,15 @@ class RollingOperators:
         emb = self.op("ww").embedding
         return sfft.irfft(sfft.ifft(F, axis=-2, overwrite_x=True)[:, :self.grid.nodes_y], n=emb[1])
 
-    def row_filter(self, power: float) -> np.ndarray:
+    def row_filter(self, power: float, dtype=np.complex128) -> np.ndarray:
         """The spectra ``(3, E_y, E_x / 2 + 1)`` of ``(C_row / C) ** power`` for the blocks
         ``ww, uu, vv`` on this grid's embedding (-): ``C`` the block's symbol, ``C_row``
         that of its kernel cut to one grid row (``C`` averaged over ``k_y``), what a solve
         on lines along ``x`` sees. Where ``|C|`` is below 1e-3 of its largest it is taken
-        as that floor. Kept per ``power``; see :mod:`bem.frictional.preconditioner`."""
-        if power not in self._filters:
+        as that floor. Computed in double precision, kept per ``power`` and ``dtype``; see
+        :mod:`bem.frictional.preconditioner`."""
+        key = (power, np.dtype(dtype))
+        if key not in self._filters:
             Ky = self.grid.nodes_y
             out = []
             for name in ("ww", "uu", "vv"):
@@ -114,8 +117,8 @@ class RollingOperators:
                 mag = np.abs(full)
                 full = np.where(mag < 1e-3 * mag.max(), 1e-3 * mag.max(), full)
                 out.append((ComplianceOperator(self.grid, row).spectrum / full) ** power)
-            self._filters[power] = np.stack(out)
-        return self._filters[power]
+            self._filters[key] = np.stack(out).astype(dtype)
+        return self._filters[key]
 
     def _stack(self, N, Sx, Sy):
         Ky, Kx = self.grid.shape
@@ -138,21 +141,27 @@ class RollingOperators:
     def filter_on(self, nodes: np.ndarray, values: np.ndarray, spectra: np.ndarray) -> np.ndarray:
         """The three rows of ``values`` ``(3, k)`` on the flat node indices ``nodes`` (``k``),
         0 elsewhere, each multiplied in Fourier space by its row of ``spectra`` (e.g.
-        :meth:`row_filter`), read back at ``nodes``."""
+        :meth:`row_filter`), read back at ``nodes``; in single precision when ``spectra``
+        is ``complex64``."""
+        real = np.float32 if spectra.dtype == np.complex64 else np.float64
         with sfft.set_workers(-1):
-            F = self._forward(self._scatter(nodes, values))
+            F = self._forward(self._scatter(nodes, values, real))
             F *= spectra
             return self._gather(self._inverse(F), nodes)
 
-    def _scatter(self, nodes, values):
+    def _scatter(self, nodes, values, dtype=np.float64):
         Ky, Kx = self.grid.shape
-        f = np.zeros((3, Ky * Kx))
+        f = np.zeros((3, Ky * Kx), dtype)
         f[:, nodes] = values
         return f.reshape(3, Ky, Kx)
 
     def _gather(self, out, nodes):
-        j, i = np.divmod(nodes, self.grid.nodes_x)
-        return out.reshape(out.shape[0], -1)[:, j * out.shape[2] + i]
+        """``out`` ``(rows, K_y, E)`` read at the flat grid indices ``nodes``; the positions
+        are kept for the last ``nodes`` array (the same one in every product of a solve)."""
+        if self._gathered[0] is not nodes or self._gathered[1] != out.shape[2]:
+            j, i = np.divmod(nodes, self.grid.nodes_x)
+            self._gathered = (nodes, out.shape[2], j * out.shape[2] + i)
+        return out.reshape(out.shape[0], -1)[:, self._gathered[2]]
 
     def displacements(self, N, Sx, Sy):
         """Horizontal surface displacements ``u, v`` (m)."""

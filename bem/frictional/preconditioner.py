@@ -235,7 +235,7 @@ class LinePreconditioner:
         # the lines' forces through the row filter (see FILTER_POWER), on the contact's box
         box, spectra = system.box, None
         if self.filter_power:
-            spectra = box.row_filter(self.filter_power)
+            spectra = box.row_filter(self.filter_power, np.complex64 if self.dtype == np.float32 else np.complex128)
 
         def precondition(r):
             ext[:n] = r
