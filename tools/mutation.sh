@@ -46,7 +46,7 @@ default_tests() {
         bem/layer.py) echo tests/unit/test_layer.py tests/unit/test_properties_layer.py \
             tests/unit/test_derivation_eq45.py ;;
         bem/energy.py) echo tests/unit/test_properties_layer.py ;;
-        bem/friction.py|bem/frictional/*) echo tests/unit/test_mutation_kills_friction.py \
+        bem/friction.py|bem/frictional/*) echo tests/unit/test_mutation_kills_friction.py tests/unit/test_row_filter.py \
             tests/unit/test_mutation_kills_active_set.py \
             tests/unit/test_mutation_friction_solve.py tests/unit/test_friction.py tests/unit/test_bem_friction_cli.py \
             tests/unit/test_bem_displacement_control.py::test_frictional_rolling_under_displacement_control ;;
