@@ -57,9 +57,10 @@ __all__ = ["LinePreconditioner", "FILTER_POWER", "LU_FROM", "SPLIT_FROM", "THREA
 #: interior's exact correction at power 1; the run ends prefer less. Measured (GMRES
 #: iterations from zero to 1e-10 |b| on the converged fine state, lines alone -> power 0.3 /
 #: 0.5 / 0.6 / 0.75 / 1): section 11 at 129 x 129 67 -> 42 / 32 / 29 / 37 / 56, at 257 x 257
-#: 84 -> 38 (0.5) / 39 (0.6) / 44 (0.7); the issue-11 case at 121 x 121 63 -> 35 / 33 / 37
-#: (0.5 / 0.6 / 0.7). Before the lines instead of after, or on both sides: no better (129 x 129: 35 at 0.5;
-#: 0.3 on each side 39); the normal or the tangential components alone: 67 and 56
+#: 84 -> 38 (0.5) / 39 (0.6) / 44 (0.7), at 513 x 513 105 -> 52 (0.5); the issue-11 case
+#: at 121 x 121 63 -> 35 / 33 / 37 (0.5 / 0.6 / 0.7). Before the lines instead of after,
+#: or on both sides: no better (129 x 129: 35 at 0.5; 0.3 on each side 39); the normal or
+#: the tangential components alone: 67 and 56
 FILTER_POWER = 0.5
 #: lines of this many contact nodes or more keep LU factors (``getrf``: a quarter of the
 #: flops of an inverse) applied by ``getrs`` line by line, without the padded batch
