@@ -47,7 +47,7 @@ class RollingOperators:
         self._ops: dict = {}
         self._stacked: dict = {}
         self._filters: dict = {}
-        self._gathered: tuple = (None, 0, None)
+        self._gathered: tuple = (None, None)
         self._windows: dict = {}
 
     @property
@@ -156,12 +156,13 @@ class RollingOperators:
         return f.reshape(3, Ky, Kx)
 
     def _gather(self, out, nodes):
-        """``out`` ``(rows, K_y, E)`` read at the flat grid indices ``nodes``; the positions
-        are kept for the last ``nodes`` array (the same one in every product of a solve)."""
-        if self._gathered[0] is not nodes or self._gathered[1] != out.shape[2]:
+        """``out`` ``(rows, K_y, E)`` (``E`` the embedding's width, fixed for these operators)
+        read at the flat grid indices ``nodes``; the positions are kept for the last
+        ``nodes`` array (the same one in every product of a solve)."""
+        if self._gathered[0] is not nodes:
             j, i = np.divmod(nodes, self.grid.nodes_x)
-            self._gathered = (nodes, out.shape[2], j * out.shape[2] + i)
-        return out.reshape(out.shape[0], -1)[:, self._gathered[2]]
+            self._gathered = (nodes, j * out.shape[2] + i)
+        return out.reshape(out.shape[0], -1)[:, self._gathered[1]]
 
     def displacements(self, N, Sx, Sy):
         """Horizontal surface displacements ``u, v`` (m)."""

@@ -31,7 +31,8 @@ def kernels():
 def test_the_row_symbol_is_the_full_symbol_averaged_over_ky(kernels):
     """``row_filter(1) = C_row / C`` with ``C_row`` the symbol of the kernel cut to its own
     grid row, which is ``C`` averaged over ``k_y`` (a DFT identity, not how the code forms
-    it): checked where ``|C|`` is above the filter's floor, for ``ww, uu, vv``; and
+    it): checked where ``|C|`` is above the filter's floor, and the floor below it, for
+    ``ww, uu, vv``; and
     ``row_filter(0.5) ** 2 = row_filter(1)``."""
     ops = RollingOperators(GRID, kernels)
     one, half = ops.row_filter(1.0), ops.row_filter(0.5)
@@ -42,6 +43,9 @@ def test_the_row_symbol_is_the_full_symbol_averaged_over_ky(kernels):
         row = np.broadcast_to(full.mean(axis=0), full.shape)
         np.testing.assert_allclose((one[c] * full)[above], row[above], rtol=1e-10,
                                    atol=1e-12 * np.abs(row).max())
+        # below the floor (3-6 modes of 2112 here) C is taken as 1e-3 of its largest modulus
+        assert (~above).any()
+        np.testing.assert_allclose((one[c] * 1e-3 * np.abs(full).max())[~above], row[~above], rtol=1e-10)
         assert np.abs(one[c] - 1).max() > 0.5  # the neighbouring rows matter
     np.testing.assert_allclose(half ** 2, one, rtol=1e-12)
     single = ops.row_filter(0.5, np.complex64)
