@@ -32,8 +32,7 @@ def test_the_row_symbol_is_the_full_symbol_averaged_over_ky(kernels):
     """``row_filter(1) = C_row / C`` with ``C_row`` the symbol of the kernel cut to its own
     grid row, which is ``C`` averaged over ``k_y`` (a DFT identity, not how the code forms
     it): checked where ``|C|`` is above the filter's floor, and the floor below it, for
-    ``ww, uu, vv``; and
-    ``row_filter(0.5) ** 2 = row_filter(1)``."""
+    ``ww, uu, vv``; ``row_filter(0.5) ** 2 = row_filter(1)``; the single-precision copy."""
     ops = RollingOperators(GRID, kernels)
     one, half = ops.row_filter(1.0), ops.row_filter(0.5)
     assert one.shape == (3,) + ops.op("ww").spectrum.shape
