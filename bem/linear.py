@@ -36,7 +36,7 @@ class LinearSystem(Protocol):
 
 
 def fgmres(matvec, b: np.ndarray, precondition=None, *, tol: float, restart: int = 100, maxiter: int = 100,
-           callback=None) -> tuple[np.ndarray, bool, int]:
+           callback=None, inner=None) -> tuple[np.ndarray, bool, int]:
     """Flexible right-preconditioned restarted GMRES from ``x = 0``.
 
     Minimises the true residual ``|b - A x|`` over ``x in span(z_1 .. z_j)``,
@@ -58,6 +58,11 @@ def fgmres(matvec, b: np.ndarray, precondition=None, *, tol: float, restart: int
         Cycle length and number of cycles.
     callback : callable, optional
         Called with the residual estimate after each iteration.
+    inner : callable, optional
+        ``A x`` inside the cycles when a cheaper, less accurate product exists (e.g. in
+        single precision); ``matvec`` still gives the residual at each cycle's end, so the
+        convergence test reads the true residual and a cycle that fell short of ``tol``
+        by the inner product's error restarts from it.
 
     Returns
     -------
@@ -77,6 +82,7 @@ def fgmres(matvec, b: np.ndarray, precondition=None, *, tol: float, restart: int
     Z = np.empty((restart, n))
     H = np.zeros((restart + 1, restart))
     cs, sn = np.zeros(restart), np.zeros(restart)
+    product = matvec if inner is None else inner
     for _ in range(maxiter):
         V[0] = r / beta
         g = np.zeros(restart + 1)
@@ -84,7 +90,7 @@ def fgmres(matvec, b: np.ndarray, precondition=None, *, tol: float, restart: int
         j = 0
         for j in range(restart):
             Z[j] = V[j] if precondition is None else precondition(V[j])
-            w = matvec(Z[j])
+            w = product(Z[j])
             norm0 = float(np.linalg.norm(w))
             h = V[:j + 1] @ w
             w -= h @ V[:j + 1]
@@ -156,6 +162,10 @@ class LinearSolver:
     floor : float
         A residual below ``floor |b|`` is good enough whatever ``rtol`` asks (-): a
         correction whose residual is already near rounding is not reduced ten more orders.
+    single_from : float
+        A call whose ``rtol`` is at least this (-) runs its GMRES cycles on the system's
+        ``matvec_single`` when it has one (a product in single precision), the residual
+        at each cycle's end on ``matvec``; ``inf``: never.
     what : str
         Names the system in error messages (``"3 x 1977 unknowns of the stick/slip set"``).
 
@@ -168,8 +178,10 @@ class LinearSolver:
     """
 
     def __init__(self, dense_limit: int, rtol: float, *, restart: int = 100, maxiter: int = 100,
-                 correction: bool = False, error: type = RuntimeError, floor: float = 0.0):
+                 correction: bool = False, error: type = RuntimeError, floor: float = 0.0,
+                 single_from: float = np.inf):
         self.dense_limit, self.rtol, self.correction = dense_limit, rtol, correction
+        self.single_from = single_from
         self.restart, self.maxiter, self.error = restart, maxiter, error
         self.floor = floor
         self.iterations, self.used_gmres = 0, False
@@ -197,8 +209,9 @@ class LinearSolver:
         b = system.b - system.matvec(x0) if guess is not None else system.b
         ref = b if self.correction else system.b
         tol = max(rtol * float(np.linalg.norm(ref)), self.floor * float(np.linalg.norm(system.b)))
+        inner = getattr(system, "matvec_single", None) if rtol >= self.single_from else None
         x, ok, its = fgmres(system.matvec, b, prec, tol=tol, restart=self.restart,
-                            maxiter=self.maxiter)
+                            maxiter=self.maxiter, inner=inner)
         self.iterations += its
         if not ok or not np.isfinite(x).all():
             raise self.error(f"GMRES did not reduce the residual by {rtol:.1e} on {what or f'{n} unknowns'} "

@@ -45,6 +45,11 @@ SLOPE_FLOOR = 1e-3
 #: same active-set iterations); 1e-6 7 iterations too but more GMRES (146 at 129 x 129)
 LOOSE_REDUCTION = 1e-5
 LOOSE_UNTIL = 1e-2
+#: solves that reduce their residual by this or less (the loose ones) take the products
+#: inside their GMRES cycles in single precision
+#: (:meth:`~bem.frictional.system.SetSystem.matvec_single`), the residual at each
+#: cycle's end in double
+SINGLE_FROM = LOOSE_REDUCTION
 #: a solve stops once its residual is below this fraction of ``|b|`` (-), whatever the
 #: reduction asked: the last, tight solve starts near 1e-9 |b| and its 1e-10 reduction
 #: chased rounding. Measured against the session's starting solver (GMRES iterations
@@ -95,7 +100,7 @@ class LinearSolves:
 
     def __init__(self, dense_limit: int, reduction: float = 1e-10):
         self.solver = LinearSolver(dense_limit, reduction, restart=200, maxiter=10, correction=True,
-                                   error=FrictionNotConverged, floor=RESIDUAL_FLOOR)
+                                   error=FrictionNotConverged, floor=RESIDUAL_FLOOR, single_from=SINGLE_FROM)
         self.lines = LinePreconditioner()
 
     @property

@@ -217,6 +217,13 @@ class SetSystem:
         glob = ([d] if self.free_d else []) + ([om / self.om_unit] if self.free_om else [])
         return np.concatenate([N[C], Sx[C], Sy[C], glob])
 
-    def matvec(self, x):
-        gap, sx, sy = self.box.fields_on(self.in_box, x[:3 * self.nC].reshape(3, self.nC))[:, :, None]
+    def matvec(self, x, dtype=np.float64):
+        """The product ``A x``; its FFT convolution in ``dtype`` (the rows in double)."""
+        fields = self.box.fields_on(self.in_box, x[:3 * self.nC].reshape(3, self.nC), dtype)
+        gap, sx, sy = fields.astype(np.float64, copy=False)[:, :, None]
         return self.rows(gap, self.ax * sx, self.ax * sy, x[:, None])[:, 0]
+
+    def matvec_single(self, x):
+        """:meth:`matvec` with the convolution in single precision (rounding about 1e-7 of
+        the fields): the products inside a loose solve's GMRES cycles."""
+        return self.matvec(x, np.float32)

@@ -242,3 +242,52 @@ def test_a_failed_solve_says_what_failed_and_what_to_change(hint, tail):
     with pytest.raises(Failed) as info:  # unnamed: the size names it, and no hint
         solver(Dense(A, b))
     assert str(info.value) == "GMRES did not reduce the residual by 1.0e-12 on 60 unknowns in 1 iterations"
+
+
+def test_an_inexact_inner_product_still_ends_on_the_true_residual():
+    """The cycles run on a product perturbed by 1e-7 of its size (a single-precision
+    one); the residual at each cycle's end is the exact product's, so the solve reaches
+    1e-12 of |b| by restarting from it, which the inexact product alone cannot (its own
+    Arnoldi residual stalls near 1e-7)."""
+    A, b = _near_identity(n=80, eps=0.6, seed=5)
+    rng = np.random.default_rng(6)
+    exact, inexact = [], []
+
+    def matvec(v):
+        exact.append(1)
+        return A @ v
+
+    def inner(v):
+        inexact.append(1)
+        w = A @ v
+        return w + 1e-7 * np.linalg.norm(w) * rng.normal(size=w.size) / np.sqrt(w.size)
+
+    tol = 1e-12 * np.linalg.norm(b)
+    x, ok, its = fgmres(matvec, b, tol=tol, restart=60, maxiter=10, inner=inner)
+    assert ok and np.linalg.norm(b - A @ x) <= tol
+    assert len(inexact) == its and len(exact) >= 2  # restarted at least once
+    _, alone, _ = fgmres(inner, b, tol=tol, restart=60, maxiter=1)
+    assert not alone
+
+
+def test_loose_calls_take_the_systems_single_precision_product():
+    """A call reducing by ``single_from`` or less runs its cycles on ``matvec_single``
+    when the system has one; a tighter call and a system without one do not."""
+    A, b = _near_identity(n=60, eps=0.6, seed=2)
+    calls = []
+
+    class Single(Dense):
+        def matvec_single(self, x):
+            calls.append(1)
+            return (A.astype(np.float32) @ x.astype(np.float32)).astype(float)
+
+    solver = LinearSolver(0, 1e-12, single_from=1e-5)
+    x = solver(Single(A, b), rtol=1e-5)
+    assert calls and np.linalg.norm(b - A @ x) <= 1e-5 * np.linalg.norm(b)
+    used = len(calls)
+    x = solver(Single(A, b))
+    assert len(calls) == used and np.linalg.norm(b - A @ x) <= 1e-12 * np.linalg.norm(b)
+    x = solver(Dense(A, b), rtol=1e-3)
+    assert np.linalg.norm(b - A @ x) <= 1e-3 * np.linalg.norm(b)
+    LinearSolver(0, 1e-12)(Single(A, b), rtol=1e-3)  # by default never
+    assert len(calls) == used
