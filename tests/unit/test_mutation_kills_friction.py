@@ -164,6 +164,10 @@ def test_fields_and_displacements_are_the_signed_block_sums(shape_in):
     N[nodes], Sx[nodes], Sy[nodes] = forces
     want = ops.fields(N, Sx, Sy).reshape(3, -1)[:, nodes]
     _close(ops.fields_on(nodes, forces), want)
+    # increasing nodes (a system's contact) take the boolean-mask scatter: the same product
+    order = np.argsort(nodes)
+    assert ops._placed(nodes)[1] is None and ops._placed(nodes[order])[1] is not None
+    _close(ops.fields_on(nodes[order], forces[:, order]), want[:, order])
     # in single precision: within its rounding (measured 1e-7 of the largest), not exact
     single = ops.fields_on(nodes, forces, np.float32)
     assert single.dtype == np.float32
