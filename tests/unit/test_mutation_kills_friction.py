@@ -111,6 +111,12 @@ def test_operator_tables_and_dense_blocks_against_fft_products():
         M = _dense_of(SMALL, table)
         _close(ops.dense(name, everything, everything), M)
         _close(ops.dense(name, rows, cols), M[np.ix_(rows, cols)])
+        # rows on one grid row and columns on one (the same or another): the one-row read
+        Kx = SMALL.nodes_x
+        for jr, jc in ((2, 2), (1, 3)):
+            r, c = jr * Kx + rng.choice(Kx, 5, replace=False), jc * Kx + rng.choice(Kx, 4, replace=False)
+            _close(ops.dense(name, r, c), M[np.ix_(r, c)])
+        assert ops.dense(name, rows[:0], cols).shape == (0, cols.size)
         F = rng.normal(size=SMALL.shape)
         _close(ops.op(name).apply(F).ravel(), M @ F.ravel())
     for b in BLOCKS:  # raw kernels through op() as well
