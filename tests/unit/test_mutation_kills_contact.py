@@ -442,8 +442,8 @@ def test_gmres_that_fails_says_what_to_change(rolling_small, monkeypatch):
 
     calls = []
 
-    def failing(matvec, b, precondition=None, *, tol, restart, maxiter, callback=None):
-        calls.append((tol / np.linalg.norm(b), restart, maxiter, precondition is not None))
+    def failing(matvec, b, precondition=None, *, tol, restart, maxiter, callback=None, inner=None):
+        calls.append((tol / np.linalg.norm(b), restart, maxiter, precondition is not None, inner))
         return np.zeros_like(b), False, 7
 
     monkeypatch.setattr(linear, "fgmres", failing)
@@ -455,4 +455,4 @@ def test_gmres_that_fails_says_what_to_change(rolling_small, monkeypatch):
     assert str(info.value) == (f"GMRES did not reduce the residual by 1.0e-09 on {m} contact nodes in 7 "
                                "iterations; refine less, or raise dense_limit if memory allows")
     assert len(calls) == 1
-    assert calls[0][0] == pytest.approx(1e-9, rel=1e-12) and calls[0][1:] == (100, 100, True)
+    assert calls[0][0] == pytest.approx(1e-9, rel=1e-12) and calls[0][1:] == (100, 100, True, None)
