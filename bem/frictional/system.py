@@ -109,16 +109,14 @@ def force_rows(stick, dir_x, dir_y, slope, mu, diag, gap, Dx, Dy, N, Sx, Sy):
     upwind differences ``a_x w / V`` without the rigid creep, ``N, Sx, Sy`` (``m x k``).
     """
     m = stick.size
-    # the slip law on every row (0 on stick rows), each row then takes its own: one pass
-    # over the arrays instead of fancy-indexed copies (2x faster for one column)
-    law = np.zeros((3, m, 1))
-    law[:, ~stick, 0] = dir_x, dir_y, slope
-    ex, ey, kk = law
-    st = stick[:, None]
+    B = np.flatnonzero(~stick)
     out = np.empty((3 * m, gap.shape[1]))
-    out[:m] = gap
-    out[m:2 * m] = np.where(st, Dx, diag * (ex * Sx + ey * Sy - mu * N))
-    out[2 * m:] = np.where(st, Dy, -ey * Dx + ex * Dy + kk * (ey * Sx - ex * Sy))
+    # every row as a stick row first (contiguous copies), then the slip rows over them:
+    # fancy-indexed copies of the stick rows cost twice the whole for one column
+    out[:m], out[m:2 * m], out[2 * m:] = gap, Dx, Dy
+    ex, ey, kk = dir_x[:, None], dir_y[:, None], slope[:, None]
+    out[m + B] = diag * (ex * Sx[B] + ey * Sy[B] - mu * N[B])
+    out[2 * m + B] = -ey * Dx[B] + ex * Dy[B] + kk * (ey * Sx[B] - ex * Sy[B])
     return out
 
 
