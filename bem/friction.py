@@ -107,7 +107,7 @@ class Friction:
     max_iter: int = 300
     direction_tol: float = 1e-7
     set_tol: float = 1e-2
-    dense_limit: int = 1000
+    dense_limit: int = 600
 
     def __post_init__(self) -> None:
         if not (isinstance(self.mu, (int, float)) and math.isfinite(self.mu) and self.mu >= 0):

@@ -205,7 +205,7 @@ SCHEMA: tuple = (
             Key("set_tol", "number", "-", "accepted stick/slip border violation in a two-state cycle",
                 ("bem",), default=1e-2, rule=">=0"),
             Key("dense_limit", "integer", "-", "unknowns (3 per contact node) solved by dense LU; above, "
-                "GMRES with FFT products (O(N) memory)", ("bem",), default=1000, rule=">=0"),
+                "GMRES with FFT products (O(N) memory)", ("bem",), default=600, rule=">=0"),
         ),
         readers=("bem",),
     ),
