@@ -26,7 +26,9 @@ sets, forces relative to the largest): a paired comparison on a shared machine.
 Run (from ``benchmarks/``, ``OPENBLAS_NUM_THREADS=1``), one case a command so that the peak
 RSS is the case's own: ``../.venv/bin/python bem_friction_rolling.py --case contact --spacing
 0.2e-3`` (and ``0.1e-3``), ``--case section11 --nodes 0`` (the example's 41 x 41), ``129``,
-``257``, ``513``; add ``--repeat 3`` for a median, ``--old REV`` for a paired comparison.
+``257``, ``513``; add ``--repeat 3`` for a median, ``--old REV`` for a paired comparison,
+``--old REV --pairs 9`` for nine more solves by each, alternated, and the median of the
+pairs' ratios (on a machine whose speed drifts, the figure to quote).
 A summary table (kernels, frictionless, frictional wall and CPU, ratio, whole run,
 iterations, peak RSS) ends the output.
 """
@@ -196,6 +198,26 @@ def paired(label, problem, friction, args):
               f"solve {old['solve_s']:.2f} s -> {new['solve_s']:.2f} s ({old['solve_s'] / new['solve_s']:.1f}x), CPU "
               f"{old['solve_cpu']:.2f} s -> {new['solve_cpu']:.2f} s ({old['solve_cpu'] / new['solve_cpu']:.1f}x)",
               flush=True)
+        if args.pairs:
+            alternate(problem, friction, old_solver(args.old), new["kernels"][0], args.pairs, args.old)
+
+
+def alternate(problem, friction, old, kernels, pairs: int, rev: str) -> None:
+    """``pairs`` solves by today's solver and by ``old``, in turn (which goes first
+    alternating), and the median of the pairs' ratios old / new with their range: a ratio
+    that holds while the machine's speed drifts, which the medians of two blocks of runs
+    do not."""
+    times: dict = {"new": [], "old": []}
+    for i in range(pairs):
+        order = (("new", solve_friction), ("old", old))
+        for name, solver in (order if i % 2 == 0 else order[::-1]):
+            t0 = time.perf_counter()
+            solver(problem, friction, kernels=kernels, energy=False)
+            times[name].append(time.perf_counter() - t0)
+    ratio = np.array(times["old"]) / np.array(times["new"])
+    print(f"  {pairs} alternated pairs: today {np.median(times['new']):.3f} s, {rev} {np.median(times['old']):.3f} s "
+          f"(medians); ratio {rev} / today {np.median(ratio):.3f} (median; {ratio.min():.2f}-{ratio.max():.2f})",
+          flush=True)
 
 
 if __name__ == "__main__":
@@ -208,6 +230,8 @@ if __name__ == "__main__":
     ap.add_argument("--verbose", action="store_true")
     ap.add_argument("--period", type=float, default=0.6, help="period L (m) of the issue's case")
     ap.add_argument("--old", metavar="REV", help="also solve with the frictional solver of this git revision")
+    ap.add_argument("--pairs", type=int, default=0,
+                    help="with --old: this many more solves by each, alternated, and their paired ratio")
     args = ap.parse_args()
     print(machine(), "| load average", " ".join(f"{x:.2f}" for x in os.getloadavg()))
     if args.case in ("contact", "all"):
