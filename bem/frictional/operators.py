@@ -12,7 +12,15 @@ from ..grid import Grid
 from ..kinematics import upwind_table
 from ..operator import ComplianceOperator
 
-__all__ = ["RollingOperators", "DIFFERENCED", "FIELDS"]
+__all__ = ["RollingOperators", "DIFFERENCED", "FIELDS", "THREADED_FROM"]
+
+#: the FFT products and filters run on every core when the embedding has this many points
+#: or more, on one below. Measured (whole solves, the two settings alternated in one
+#: process, the median of the pairs' ratios one thread / every core): issue-11 case 61 x 61
+#: (embedding 108 x 108) 0.84, 121 x 121 (216 x 216) 0.93; section 11 41 x 41 0.85, 129 x 129
+#: (225 x 216) 0.99, 257 x 257 (450 x 405) 0.95 and 1.06 (4 and 6 pairs); one product there
+#: 3.8-4.0 ms on every core against 4.8-5.0 ms on one
+THREADED_FROM = 100_000
 
 #: blocks whose upwind x-difference enters the slip velocity (rows u and v)
 DIFFERENCED = ("uw", "uu", "uv", "vw", "vu", "vv")
@@ -87,16 +95,22 @@ class RollingOperators:
         if spectra is None:
             spectra = np.stack([np.stack([sign * self.op(name).spectrum for sign, name in row]) for row in names])
             spectra = self._stacked[key] = spectra.astype(np.complex64 if f.dtype == np.float32 else np.complex128)
-        with sfft.set_workers(-1):
+        with sfft.set_workers(self._workers()):
             F = self._forward(f)
             acc = spectra[:, 0] * F[0]
             acc += spectra[:, 1] * F[1]
             acc += spectra[:, 2] * F[2]
             return self._inverse(acc)
 
+    def _workers(self) -> int:
+        """Threads of the transforms: every core from :data:`THREADED_FROM` embedding points
+        on, one below (a small transform costs less than the hand-over)."""
+        emb = self.op("ww").embedding
+        return -1 if emb[0] * emb[1] >= THREADED_FROM else 1
+
     # the 2-D transforms one axis at a time, skipping the embedding's zero rows on the way
-    # in and the rows off the grid on the way out (40-55 % less work than rfft2), on every
-    # core (callers set the workers)
+    # in and the rows off the grid on the way out (40-55 % less work than rfft2), on the
+    # callers' threads
     def _forward(self, f):
         emb = self.op("ww").embedding
         return sfft.fft(sfft.rfft(f, n=emb[1]), n=emb[0], axis=-2, overwrite_x=True)
@@ -152,7 +166,7 @@ class RollingOperators:
         :meth:`row_filter`), read back at ``nodes``; in single precision when ``spectra``
         is ``complex64``."""
         real = np.float32 if spectra.dtype == np.complex64 else np.float64
-        with sfft.set_workers(-1):
+        with sfft.set_workers(self._workers()):
             F = self._forward(self._scatter(nodes, values, real))
             F *= spectra
             return self._gather(self._inverse(F), nodes)

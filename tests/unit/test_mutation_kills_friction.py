@@ -170,6 +170,18 @@ def test_fields_and_displacements_are_the_signed_block_sums(shape_in):
     N[nodes], Sx[nodes], Sy[nodes] = forces
     want = ops.fields(N, Sx, Sy).reshape(3, -1)[:, nodes]
     _close(ops.fields_on(nodes, forces), want)
+    # on every core or on one (THREADED_FROM): the same numbers, bit for bit
+    from bem.frictional import operators as op_module
+
+    kept, got = op_module.THREADED_FROM, []
+    try:
+        for threshold, workers in ((0, -1), (10**12, 1)):
+            op_module.THREADED_FROM = threshold
+            assert ops._workers() == workers
+            got.append(ops.fields_on(nodes, forces))
+    finally:
+        op_module.THREADED_FROM = kept
+    np.testing.assert_array_equal(got[0], got[1])
     # increasing nodes (a system's contact) take the boolean-mask scatter: the same product
     order = np.argsort(nodes)
     assert ops._placed(nodes)[1] is None and ops._placed(nodes[order])[1] is not None
