@@ -13,7 +13,22 @@ import scipy.fft as sfft
 
 from .grid import Grid
 
-__all__ = ["ComplianceOperator"]
+__all__ = ["ComplianceOperator", "THREADED_FROM", "fft_workers"]
+
+#: FFTs of an embedding with this many points or more run on every core, smaller ones on
+#: one (a small transform costs less than handing it over). Measured, whole solves with the
+#: two settings alternated in one process (median of the pairs' ratios, one thread / every
+#: core): the frictionless solver, issue 11's case at 61 x 61 (embedding 128 x 128) 0.65,
+#: 121 x 121 0.72, section 11 41 x 41 0.57, 129 x 129 (258 x 258) 0.76, 257 x 257 (514 x 514)
+#: 1.20; the frictional one (on the contact's box) 61 x 61 (108 x 108) 0.84, 121 x 121 0.93,
+#: 41 x 41 0.85, 129 x 129 (225 x 216) 0.99, 257 x 257 (450 x 405) 0.95 and 1.06
+THREADED_FROM = 100_000
+
+
+def fft_workers(shape: tuple[int, int]) -> int:
+    """Threads for the transforms of an embedding of ``shape``: ``-1`` (every core) from
+    :data:`THREADED_FROM` points on, 1 below."""
+    return -1 if shape[0] * shape[1] >= THREADED_FROM else 1
 
 
 class ComplianceOperator:
@@ -37,7 +52,8 @@ class ComplianceOperator:
         dy = np.arange(-(Ky - 1), Ky) % self._size[0]
         dx = np.arange(-(Kx - 1), Kx) % self._size[1]
         circ[np.ix_(dy, dx)] = kernel
-        self._hat = sfft.rfft2(circ, workers=-1)
+        self._workers = fft_workers(self._size)
+        self._hat = sfft.rfft2(circ, workers=self._workers)
 
     @property
     def embedding(self) -> tuple[int, int]:
@@ -60,7 +76,7 @@ class ComplianceOperator:
         """``C f`` for nodal forces of shape ``(K_y, K_x)`` (N); returns m, same shape."""
         Ky, Kx = self.grid.shape
         f = np.asarray(forces, dtype=float).reshape(Ky, Kx)
-        out = sfft.irfft2(sfft.rfft2(f, s=self._size, workers=-1) * self._hat, s=self._size, workers=-1)
+        out = sfft.irfft2(sfft.rfft2(f, s=self._size, workers=self._workers) * self._hat, s=self._size, workers=self._workers)
         return out[:Ky, :Kx]
 
     def apply_transpose(self, forces: np.ndarray) -> np.ndarray:
@@ -68,7 +84,7 @@ class ComplianceOperator:
         spectrum of the real kernel turns the circular convolution into a correlation."""
         Ky, Kx = self.grid.shape
         f = np.asarray(forces, dtype=float).reshape(Ky, Kx)
-        out = sfft.irfft2(sfft.rfft2(f, s=self._size, workers=-1) * np.conj(self._hat), s=self._size, workers=-1)
+        out = sfft.irfft2(sfft.rfft2(f, s=self._size, workers=self._workers) * np.conj(self._hat), s=self._size, workers=self._workers)
         return out[:Ky, :Kx]
 
     @property
@@ -92,7 +108,7 @@ class ComplianceOperator:
             raise ZeroDivisionError("the circulant embedding of the compliance is nearly singular")
         Ky, Kx = self.grid.shape
         f = np.asarray(values, dtype=float).reshape(Ky, Kx)
-        out = sfft.irfft2(sfft.rfft2(f, s=self._size, workers=-1) * self._inv_hat, s=self._size, workers=-1)
+        out = sfft.irfft2(sfft.rfft2(f, s=self._size, workers=self._workers) * self._inv_hat, s=self._size, workers=self._workers)
         return out[:Ky, :Kx]
 
     def dense(self, nodes: np.ndarray | None = None) -> np.ndarray:

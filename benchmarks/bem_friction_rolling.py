@@ -14,7 +14,8 @@ and the same problem on ``--nodes`` grids (``bem_friction.py``'s large-grid set-
 5.2 mm, ``a = 10.4 mm / (nodes - 1)``).
 
 Printed per case: kernels (s), the frictionless solve of the same grid (s; the median of
-``--repeat`` solves, like the frictional one), the frictional
+``--repeat`` solves, each right before a frictional one; the ratio frictional / frictionless
+is the median of those pairs' ratios), the frictional
 solve (s) and its parts (coarse-grid start, fine active set), active-set and GMRES
 iterations, the result (creep force, stick fraction, R_r) and the peak RSS.
 
@@ -120,14 +121,13 @@ def run(label: str, problem: Problem, friction: Friction, repeat: int, verbose: 
     X, Y = problem.grid.coordinates()
     profile = problem.indenter.profile(X, Y)
     op = ComplianceOperator(problem.grid, kernels["ww"])
-    normal_times = []
-    for _ in range(repeat):  # the ratio's denominator, a median too
+    normal_times, times, cpus, lines = [], [], [], []
+    for i in range(repeat):
+        # the frictionless solve right before each frictional one: the ratio is taken pair
+        # by pair, so that it holds while the machine's speed drifts
         t0 = time.perf_counter()
         normal = solve_normal(op, profile, load=problem.loading.load)
         normal_times.append(time.perf_counter() - t0)
-    normal_s = sorted(normal_times)[len(normal_times) // 2]
-    times, cpus, lines = [], [], []
-    for i in range(repeat):
         stamp = time.perf_counter()
         lines.clear()
 
@@ -140,6 +140,8 @@ def run(label: str, problem: Problem, friction: Friction, repeat: int, verbose: 
         res, _ = solver(problem, friction, kernels=kernels, energy=False, progress=progress)
         times.append(time.perf_counter() - t0)
         cpus.append(time.process_time() - c0)
+    ratio = float(np.median(np.array(times) / np.array(normal_times)))
+    normal_s = float(np.median(normal_times))
     times.sort()
     cpus.sort()
     solve_s, solve_cpu = times[len(times) // 2], cpus[len(cpus) // 2]
@@ -149,7 +151,7 @@ def run(label: str, problem: Problem, friction: Friction, repeat: int, verbose: 
           f"{int(res.contact.sum())} contact nodes")
     print(f"  kernels {kernel_s:.2f} s, frictionless solve {normal_s:.3f} s "
           f"({normal.record.iterations} it, {normal.record.linear_iterations} GMRES)")
-    print(f"  frictional solve {solve_s:.3f} s (median of {repeat}; {solve_s / normal_s:.1f} x frictionless), "
+    print(f"  frictional solve {solve_s:.3f} s (median of {repeat}; {ratio:.1f} x frictionless, the median of the pairs), "
           f"CPU {solve_cpu:.3f} s, whole run {kernel_s + solve_s:.2f} s; {r.iterations} active-set iterations, "
           f"{r.linear_solver} {r.linear_iterations} iterations")
     print(f"  creep force -sum S_x = {-res.force_x.sum():.6g} N ({-res.force_x.sum() / (MU * res.load):.5f} mu P), "
@@ -160,7 +162,7 @@ def run(label: str, problem: Problem, friction: Friction, repeat: int, verbose: 
     if coarse:
         print(f"  coarse start done at {coarse[-1].split(' s')[0].strip()} s")
     SUMMARY.append((label.split(":")[0], f"{g.nodes_x} x {g.nodes_y}", int(res.contact.sum()), kernel_s, normal_s,
-                    solve_s, solve_cpu, solve_s / normal_s, kernel_s + solve_s, r.iterations, r.linear_iterations,
+                    solve_s, solve_cpu, ratio, kernel_s + solve_s, r.iterations, r.linear_iterations,
                     peak_rss_mb()))
     return {"kernel_s": kernel_s, "normal_s": normal_s, "solve_s": solve_s, "solve_cpu": solve_cpu, "result": res,
             "kernels": (kernels, kernel_s)}

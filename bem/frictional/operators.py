@@ -10,17 +10,10 @@ import scipy.fft as sfft
 
 from ..grid import Grid
 from ..kinematics import upwind_table
-from ..operator import ComplianceOperator
+from ..operator import ComplianceOperator, fft_workers
 
-__all__ = ["RollingOperators", "DIFFERENCED", "FIELDS", "THREADED_FROM"]
+__all__ = ["RollingOperators", "DIFFERENCED", "FIELDS"]
 
-#: the FFT products and filters run on every core when the embedding has this many points
-#: or more, on one below. Measured (whole solves, the two settings alternated in one
-#: process, the median of the pairs' ratios one thread / every core): issue-11 case 61 x 61
-#: (embedding 108 x 108) 0.84, 121 x 121 (216 x 216) 0.93; section 11 41 x 41 0.85, 129 x 129
-#: (225 x 216) 0.99, 257 x 257 (450 x 405) 0.95 and 1.06 (4 and 6 pairs); one product there
-#: 3.8-4.0 ms on every core against 4.8-5.0 ms on one
-THREADED_FROM = 100_000
 
 #: blocks whose upwind x-difference enters the slip velocity (rows u and v)
 DIFFERENCED = ("uw", "uu", "uv", "vw", "vu", "vv")
@@ -103,10 +96,8 @@ class RollingOperators:
             return self._inverse(acc)
 
     def _workers(self) -> int:
-        """Threads of the transforms: every core from :data:`THREADED_FROM` embedding points
-        on, one below (a small transform costs less than the hand-over)."""
-        emb = self.op("ww").embedding
-        return -1 if emb[0] * emb[1] >= THREADED_FROM else 1
+        """Threads of the transforms (:func:`bem.operator.fft_workers` of the embedding)."""
+        return fft_workers(self.op("ww").embedding)
 
     # the 2-D transforms one axis at a time, skipping the embedding's zero rows on the way
     # in and the rows off the grid on the way out (40-55 % less work than rfft2), on the

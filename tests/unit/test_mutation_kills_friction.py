@@ -171,7 +171,7 @@ def test_fields_and_displacements_are_the_signed_block_sums(shape_in):
     want = ops.fields(N, Sx, Sy).reshape(3, -1)[:, nodes]
     _close(ops.fields_on(nodes, forces), want)
     # on every core or on one (THREADED_FROM): the same numbers, bit for bit
-    from bem.frictional import operators as op_module
+    from bem import operator as op_module
 
     kept, got = op_module.THREADED_FROM, []
     try:
@@ -941,3 +941,25 @@ def test_frictional_contact_derived_fields_by_hand():
     rec = r.record
     assert type(rec)(1, (), "dense", 0, 0.3, 0.2, 0.1).residual == 0.3
     assert type(rec)(1, (), "dense", 0, 0.1, 0.3, 0.2).residual == 0.3
+
+
+def test_transforms_go_threaded_from_the_threshold():
+    """``fft_workers``: one thread below ``THREADED_FROM`` embedding points, every core from
+    there on; a ComplianceOperator keeps its embedding's choice, and its product is the same
+    bit for bit either way."""
+    from bem import operator as op_module
+    from bem.operator import THREADED_FROM, ComplianceOperator, fft_workers
+
+    assert THREADED_FROM == 100_000
+    assert fft_workers((100, 1000)) == -1 and fft_workers((100, 999)) == 1 and fft_workers((1, 1)) == 1
+    kern = _random_kernels(SMALL, seed=21)["ww"]
+    F = np.random.default_rng(22).normal(size=SMALL.shape)
+    one = ComplianceOperator(SMALL, kern)
+    kept = op_module.THREADED_FROM
+    try:
+        op_module.THREADED_FROM = 0
+        every = ComplianceOperator(SMALL, kern)
+    finally:
+        op_module.THREADED_FROM = kept
+    assert one._workers == 1 and every._workers == -1
+    np.testing.assert_array_equal(one.apply(F), every.apply(F))
