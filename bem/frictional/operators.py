@@ -14,7 +14,6 @@ from ..operator import ComplianceOperator, fft_workers
 
 __all__ = ["RollingOperators", "DIFFERENCED", "FIELDS"]
 
-
 #: blocks whose upwind x-difference enters the slip velocity (rows u and v)
 DIFFERENCED = ("uw", "uu", "uv", "vw", "vu", "vv")
 #: the signed blocks of :meth:`RollingOperators.fields`: deflection, then the upwind strains
@@ -48,7 +47,7 @@ class RollingOperators:
         self._ops: dict = {}
         self._stacked: dict = {}
         self._filters: dict = {}
-        self._gathered: tuple = (None, None)
+        self._placing: tuple = (None, None)
         self._windows: dict = {}
 
     @property
@@ -87,7 +86,8 @@ class RollingOperators:
         spectra = self._stacked.get(key)
         if spectra is None:
             spectra = np.stack([np.stack([sign * self.op(name).spectrum for sign, name in row]) for row in names])
-            spectra = self._stacked[key] = spectra.astype(np.complex64 if f.dtype == np.float32 else np.complex128)
+            spectra = self._stacked[key] = spectra.astype(np.complex64 if f.dtype == np.float32 else np.complex128,
+                                                          copy=False)
         with sfft.set_workers(self._workers()):
             F = self._forward(f)
             acc = spectra[:, 0] * F[0]
@@ -182,15 +182,15 @@ class RollingOperators:
         """For the flat grid indices ``nodes``: their flat positions in rows as wide as the
         embedding and, when they increase, the grid's boolean mask of them (else ``None``);
         kept for the last ``nodes`` array (the same one in every product of a solve)."""
-        if self._gathered[0] is not nodes:
+        if self._placing[0] is not nodes:
             j, i = np.divmod(nodes, self.grid.nodes_x)
             width = self.op("ww").embedding[1]
             mask = None
             if np.all(np.diff(nodes) > 0):
                 mask = np.zeros(self.grid.nodes_x * self.grid.nodes_y, bool)
                 mask[nodes] = True
-            self._gathered = (nodes, (j * width + i, mask))
-        return self._gathered[1]
+            self._placing = (nodes, (j * width + i, mask))
+        return self._placing[1]
 
     def displacements(self, N, Sx, Sy):
         """Horizontal surface displacements ``u, v`` (m)."""
