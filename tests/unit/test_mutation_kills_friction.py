@@ -116,6 +116,9 @@ def test_operator_tables_and_dense_blocks_against_fft_products():
         for jr, jc in ((2, 2), (1, 3)):
             r, c = jr * Kx + rng.choice(Kx, 5, replace=False), jc * Kx + rng.choice(Kx, 4, replace=False)
             _close(ops.dense(name, r, c), M[np.ix_(r, c)])
+            # one side on one grid row, the other on several: the general read
+            _close(ops.dense(name, r, cols), M[np.ix_(r, cols)])
+            _close(ops.dense(name, rows, c), M[np.ix_(rows, c)])
         assert ops.dense(name, rows[:0], cols).shape == (0, cols.size)
         F = rng.normal(size=SMALL.shape)
         _close(ops.op(name).apply(F).ravel(), M @ F.ravel())
