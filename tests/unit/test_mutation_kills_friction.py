@@ -971,10 +971,11 @@ def test_transforms_go_threaded_from_the_threshold():
 def test_the_single_precision_product_is_single_and_close(kernels):
     """``SetSystem.matvec_single`` rounds the convolution in single precision: it differs
     from ``matvec`` (by more than double rounding) and agrees with it within single
-    rounding (measured ~1e-7 of the largest entry)."""
+    rounding (measured 8.4e-9 of the largest entry: the rows mix the fields with the
+    forces, which stay in double)."""
     system = _system(kernels)
     x = np.random.default_rng(8).normal(size=system.n)
     exact, single = system.matvec(x), system.matvec_single(x)
     assert single.dtype == np.float64
     err = np.abs(single - exact).max() / np.abs(exact).max()
-    assert 1e-12 < err < 1e-5, err
+    assert 1e-12 < err < 1e-7, err
