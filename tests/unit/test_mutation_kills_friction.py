@@ -251,9 +251,10 @@ def test_coarse_operators_are_every_other_node():
 
 
 # --------------------------------------------------------------------------------------
-# bem.frictional.preconditioner: the result is the exact inverse of its own line blocks
-# (the system's dense matrix restricted to one grid row of contact nodes, without the
-# normal-tangential coupling blocks, keeping the slip rows' -mu N), whatever the layout.
+# bem.frictional.preconditioner: the result is the exact inverse of its own run blocks
+# (the system's dense matrix restricted to one run of contact nodes along a grid row,
+# without the normal-tangential coupling blocks, keeping the slip rows' -mu N), whatever
+# the layout; its Toeplitz pieces against numpy's dense inverses.
 
 from bem import Layer, Sphere, ThreeParameterSolid  # noqa: E402
 
@@ -269,23 +270,27 @@ def kernels():
     return influence_kernels(GRID, LAYER, V, blocks=BLOCKS)
 
 
-def _system(kernels, load=None, indentation=1e-4, omega=2.4, seed=0, flip=None):
+def _system(kernels, load=None, indentation=1e-4, omega=2.4, seed=0, flip=None, hole=None, turn=0.0, ops=None):
     """A synthetic set state on the frictionless contact of 20 N: random stick/slip
-    split, slip directions and slopes."""
+    split, slip directions (turned by ``turn`` rad) and slopes; ``hole``: a node left out
+    of the contact (splitting its grid row's run in two); ``ops``: the operators of
+    another such system (new ones otherwise)."""
     from bem.contact import solve_normal
     from bem.frictional import RollingOperators, RollingSetup, SetState, SetSystem
     from bem.kinematics import rolling_radius
 
-    ops = RollingOperators(GRID, kernels)
+    ops = RollingOperators(GRID, kernels) if ops is None else ops
     X, Y = GRID.coordinates()
     s = Sphere(0.02).profile(X, Y).ravel()
     N0 = solve_normal(ops.op("ww"), s.reshape(GRID.shape), load=20.0).force.ravel()
     rng = np.random.default_rng(seed)
     contact = N0 > 0
+    if hole is not None:
+        contact[hole] = False
     stick = contact & (rng.random(N0.size) < 0.6)
     if flip is not None:
         stick[flip] = ~stick[flip]
-    ang = rng.uniform(0, 2 * np.pi, N0.size)
+    ang = rng.uniform(0, 2 * np.pi, N0.size) + turn
     e = np.stack([np.cos(ang), np.sin(ang)], 1)
     k = rng.uniform(0.1, 2.0, N0.size) * V / N0.max()
     ell = rolling_radius(Sphere(0.02), Y).ravel()
@@ -299,13 +304,19 @@ def _system(kernels, load=None, indentation=1e-4, omega=2.4, seed=0, flip=None):
     return SetSystem(setup, SetState(contact=contact, stick=stick & contact, direction=e, slope=k))
 
 
+def _runs(system):
+    """Each contact node's run: its grid row, split where a node's right-hand neighbour is
+    out of contact."""
+    return np.cumsum(np.r_[True, (np.diff(system.Cj) != 0) | (np.diff(system.Ci) != 1)])
+
+
 def _line_blocks(system):
-    """The system's dense matrix (force unknowns) with every entry between different grid
-    rows, the gap rows' S_x, S_y columns and the x, y rows' N columns set to 0, except the
-    slip nodes' own -mu diag N in their magnitude rows."""
+    """The system's dense matrix (force unknowns) with every entry between different runs,
+    the gap rows' S_x, S_y columns and the x, y rows' N columns set to 0, except the slip
+    nodes' own -mu diag N in their magnitude rows."""
     nC = system.nC
     A = system.dense()[:3 * nC, :3 * nC].copy()
-    line = np.tile(system.Cj, 3)
+    line = np.tile(_runs(system), 3)
     A[line[:, None] != line[None, :]] = 0.0
     keep = np.zeros(nC, bool)
     keep[system.B] = True
@@ -317,163 +328,145 @@ def _line_blocks(system):
     return A
 
 
+def _slip_runs(system):
+    return np.unique(_runs(system)[system.B]).size
+
+
+def _toeplitz(t, n):
+    """``T_n[i, j] = t[M - 1 + i - j]`` for ``t`` of ``2 M - 1`` values."""
+    c = (t.size - 1) // 2
+    i = np.arange(n)
+    return t[c + i[:, None] - i[None, :]]
+
+
+def test_levinson_gives_the_first_and_last_columns_for_every_length(kernels):
+    """The columns of ``T_n^{-1}`` for ``n = 1 ... M`` against numpy's inverse, for a
+    random nonsymmetric Toeplitz matrix (diagonally dominant) and the grid row of each
+    of the layer's three blocks (``C_ww`` and the upwind-differenced ``C_uu``, ``C_vv``;
+    nonsymmetric in a moving frame): measured 1e-15 relative, 1e-12 allowed; a singular
+    leading block is an error naming its size."""
+    from bem.frictional import RollingOperators
+    from bem.frictional.preconditioner import levinson
+
+    ops = RollingOperators(GRID, kernels)
+    Ky, Kx = GRID.shape
+    M = 12
+    rng = np.random.default_rng(3)
+    rows = [rng.normal(size=2 * M - 1) + 8.0 * (np.arange(2 * M - 1) == M - 1)]
+    rows += [ops.tables[b][Ky - 1, Kx - M:Kx - 1 + M] for b in ("ww", "duu", "dvv")]
+    for t in rows:
+        assert not np.allclose(t, t[::-1])  # nonsymmetric
+        first, last = levinson(t, M)
+        assert first.shape == last.shape == (M, M)
+        for n in range(1, M + 1):
+            ref = np.linalg.inv(_toeplitz(t, n))
+            scale = np.abs(ref).max()
+            assert np.abs(first[n - 1, :n] - ref[:, 0]).max() < 1e-12 * scale
+            assert np.abs(last[n - 1, :n] - ref[:, -1]).max() < 1e-12 * scale
+            assert not first[n - 1, n:].any() and not last[n - 1, n:].any()
+    t = np.ones(2 * M - 1)  # every leading block of size 2 or more is singular
+    with pytest.raises(np.linalg.LinAlgError, match=r"the leading 2 x 2 block is singular"):
+        levinson(t, M)
+    with pytest.raises(np.linalg.LinAlgError, match="zero diagonal"):
+        levinson(np.r_[np.ones(M - 1), 0.0, np.ones(M - 1)], M)
+
+
+@pytest.mark.parametrize("threads", [False, True])
+def test_row_inverses_solve_the_runs_toeplitz_systems(kernels, threads):
+    """:class:`RowInverses` on the layer's grid: for runs of 1 to ``M`` nodes, batched
+    with others of different lengths and zero beyond their own, ``solve`` equals numpy's
+    solve with the run's Toeplitz block (``C_ww``, ``a_x`` times the differenced
+    ``C_uu``, ``C_vv``) to 1e-12 (measured 1e-15), and from the unit vectors' spectra it
+    gives the inverse's columns; the transform is at least ``2 M - 1`` long (no wrap), and
+    two threads give the same bits as one."""
+    from bem.frictional import RollingOperators
+    from bem.frictional.preconditioner import RowInverses
+
+    ops = RollingOperators(GRID, kernels)
+    Ky, Kx = GRID.shape
+    inv = RowInverses(ops, 16)
+    assert inv.M == 16 and inv.F >= 31 and inv.spectra.shape == (3, 4, 16, inv.F // 2 + 1)
+    assert RowInverses(ops, 99).M == Kx  # no run is longer than a grid row
+    lens = np.array([1, 2, 7, 16, 9, 16])
+    rng = np.random.default_rng(8)
+    v = rng.normal(size=(lens.size, 16)) * (np.arange(16) < lens[:, None])
+    for b, (name, scale) in enumerate((("ww", 1.0), ("duu", GRID.spacing_x), ("dvv", GRID.spacing_x))):
+        t = scale * ops.tables[name][Ky - 1, Kx - 16:Kx + 15]
+        got = inv.solve(inv.spectra[b][:, lens - 1], v, threads=threads)
+        cols = inv.solve(inv.spectra[b][:, lens - 1], None, unit=inv.units[lens - 1], threads=threads)
+        np.testing.assert_array_equal(got, inv.solve(inv.spectra[b][:, lens - 1], v))
+        for row, n in enumerate(lens):
+            T = _toeplitz(t, n)
+            ref = np.linalg.solve(T, v[row, :n])
+            assert np.abs(got[row, :n] - ref).max() < 1e-12 * np.abs(ref).max()
+            col = np.linalg.inv(T)[:, n - 1]
+            assert np.abs(cols[row, :n] - col).max() < 1e-12 * np.abs(col).max()
+
+
 @pytest.mark.parametrize("dtype, tol", [(np.float64, 1e-10), (np.float32, 2e-5)])
-@pytest.mark.parametrize("lu_from, pad", [(1000, 8), (1000, 1), (1, 8), (5, 3)])
-def test_line_preconditioner_is_the_inverse_of_its_line_blocks(kernels, dtype, tol, lu_from, pad):
-    """M (B x) = x for the line blocks B of a contact of 67 nodes on 9 grid rows (lines of
-    3 to 9 nodes, stick and slip mixed), by inverses, by LU factors (lu_from) or both, with
-    any padding; measured 2e-15 (double) and 4e-7 (single) relative."""
+@pytest.mark.parametrize("hole", [False, True])
+def test_line_preconditioner_is_the_inverse_of_its_run_blocks(kernels, dtype, tol, hole):
+    """M (B x) = x for the run blocks B of a contact of 67 nodes on 9 grid rows (runs of 3
+    to 9 nodes, stick and slip mixed; with a hole, one row in two runs), in double and
+    single precision; measured 2e-15 (double) and 3e-7 (single) relative. The slip-slip
+    columns are computed once for every run with slip nodes."""
     from bem.frictional.preconditioner import LinePreconditioner
 
     system = _system(kernels)
+    if hole:
+        system = _system(kernels, hole=system.C[system.nC // 2])
+    runs = _runs(system)
+    assert runs.max() == len(set(system.Cj)) + hole
     assert 0 < system.A.size < system.nC and system.n == 3 * system.nC
-    assert len(set(system.Cj)) > 3
     B = _line_blocks(system)
     x = np.random.default_rng(1).normal(size=system.n)
-    pre = LinePreconditioner(pad=pad, dtype=dtype, lu_from=lu_from, filter_power=0)
+    pre = LinePreconditioner(dtype=dtype, filter_power=0)
     pre.attach(system)
     got = system.precondition(B @ x)
-    assert got.shape == (system.n,)
+    assert got.shape == (system.n,) and got.dtype == np.float64
     assert np.abs(got - x).max() < tol * np.abs(x).max()
-    assert pre.factorised == len(set(system.Cj))
-
-
-@pytest.mark.parametrize("lu_from", [1000, 5])
-def test_line_preconditioner_on_two_threads_gives_the_same_result(kernels, monkeypatch, lu_from):
-    """With THREAD_FROM and BUILD_FROM lowered to 0 the lines are inverted on two threads
-    and the groups and long lines applied in two parts of about equal bytes, each line in
-    exactly one: the result is bit-identical to one thread's, every line inverted once;
-    with threads=False (or on a single core) it stays on one."""
-    import bem.frictional.preconditioner as P
-
-    system = _system(kernels)
-    x = np.random.default_rng(3).normal(size=system.n)
-    one = P.LinePreconditioner(lu_from=lu_from, pad=1, threads=False)
-    one.attach(system)
-    want = system.precondition(x)
-    monkeypatch.setattr(P, "THREAD_FROM", 0)
-    monkeypatch.setattr(P, "BUILD_FROM", 0)
-    two = P.LinePreconditioner(lu_from=lu_from, pad=1)
-    two.attach(system)
-    np.testing.assert_array_equal(system.precondition(x), want)
-    assert two.factorised == one.factorised == len(set(system.Cj))
-    batches = two._batches[1]
-    if lu_from == 1000:  # every line in a batched group
-        parts = P._halves(batches, [])
-        assert sorted(map(id, parts[0][0] + parts[1][0])) == sorted(map(id, batches)) and len(batches) > 2
-        sizes = [P._nbytes(*p) for p in parts]
-        assert abs(sizes[0] - sizes[1]) <= max(P._nbytes([b], []) for b in batches) and min(sizes) > 0
-    monkeypatch.setattr(P.os, "cpu_count", lambda: 1)
-    monkeypatch.setattr(P, "_second_thread", lambda: pytest.fail("a second thread on one core"))
-    single = P.LinePreconditioner(lu_from=lu_from, pad=1)
-    single.attach(system)
-    np.testing.assert_array_equal(system.precondition(x), want)
-
-
-class _Inline:
-    """A stand-in for the second thread: runs each job at once and records its argument."""
-
-    def __init__(self):
-        self.jobs = []
-
-    def submit(self, fn, part, *rest):
-        self.jobs.append(part)
-        fn(part, *rest)
-        return self
-
-    def result(self):
-        return None
-
-
-def test_two_threads_exactly_from_the_thresholds_with_two_cores(kernels, monkeypatch):
-    """The application goes to two threads when its blocks take THREAD_FROM bytes or more
-    and ``os.cpu_count()`` is 2 or more (unknown counts as one core); the build when its
-    lines take BUILD_FROM flops (8 m^3 a line) or more; the second thread gets the greedy
-    split: lines (groups) by decreasing size, each to the lighter half (m^3 or bytes),
-    ties to the first."""
-    import bem.frictional.preconditioner as P
-
-    system = _system(kernels)
-    x = np.random.default_rng(6).normal(size=system.n)
-    ref = P.LinePreconditioner(pad=1, threads=False)
-    ref.attach(system)
-    want = system.precondition(x)
-    nbytes = P._nbytes(ref._batches[1], [])
-    lines = [np.flatnonzero(system.Cj == j) for j in np.unique(system.Cj)]
-    flops = sum(8.0 * J.size ** 3 for J in lines)
-    for cores, bytes_from, build_from, applied, built in [
-            (2, nbytes, flops, True, True), (2, nbytes + 1, flops + 1, False, False),
-            (4, nbytes, flops + 1, True, False), (None, 0, 0, False, False), (1, 0, 0, False, False)]:
-        pool = _Inline()
-        monkeypatch.setattr(P, "_second_thread", lambda: pool)
-        monkeypatch.setattr(P.os, "cpu_count", lambda: cores)
-        monkeypatch.setattr(P, "THREAD_FROM", bytes_from)
-        monkeypatch.setattr(P, "BUILD_FROM", build_from)
-        pre = P.LinePreconditioner(pad=1)
-        pre.attach(system)
-        got = system.precondition(x)
-        np.testing.assert_array_equal(got, want)
-        build_jobs = [job for job in pool.jobs if isinstance(job, list) and job and isinstance(job[0], list)]
-        apply_jobs = [job for job in pool.jobs if isinstance(job, tuple)]
-        assert (len(build_jobs), len(apply_jobs)) == (int(built), int(applied)), (cores, bytes_from, build_from)
-        if built:  # the greedy split by m^3, largest first, ties to the first half
-            halves, load = ([], []), [0, 0]
-            for J in sorted(lines, key=lambda J: -J.size):
-                k = int(load[1] < load[0])
-                halves[k].append(J.size)
-                load[k] += J.size ** 3
-            assert sorted(line[0].size for line in build_jobs[0]) == sorted(halves[1])
-        if applied:  # the second part of _halves
-            second = P._halves(pre._batches[1], [])[1]
-            assert [id(g) for g in apply_jobs[0][0]] == [id(g) for g in second[0]] and apply_jobs[0][1] == []
-
-
-def _fake_group(nbytes):
-    return (None, None, np.zeros(nbytes, np.uint8), np.zeros(0, np.uint8), None)
-
-
-def _fake_long_line(n_normal, n_tangential):
-    return (None, None, ((np.zeros(n_normal, np.uint8), None), (np.zeros(n_tangential, np.uint8), None), None))
-
-
-def test_balanced_deals_the_heaviest_first_to_the_lighter_list():
-    import bem.frictional.preconditioner as P
-
-    # 3 -> first; 2 -> second; 2 -> second (2 < 3); 1 -> first (4 > 3)
-    assert P._balanced([1, 2, 3, 2], float) == ([3, 1], [2, 2])
-    # 2 -> first; 1 -> second; 1 -> second (1 < 2); then a tie: 1 -> first
-    assert P._balanced([1, 2, 1, 1], float) == ([2, 1], [1, 1])
-    assert P._balanced([5], float) == ([5], []) and P._balanced([], float) == ([], [])
-    # the weight, not the item, orders and balances
-    assert P._balanced(["aaa", "b", "cc"], len) == (["aaa"], ["cc", "b"])
-
-
-def test_nbytes_and_halves_by_hand():
-    """_nbytes sums the inverses of the groups and the factors of the long lines; _halves
-    deals groups and long lines, largest first, to the lighter part, ties to the first."""
-    import bem.frictional.preconditioner as P
-
-    groups = [_fake_group(2), _fake_group(3)]
-    longs = [_fake_long_line(1, 4), _fake_long_line(2, 0)]
-    assert P._nbytes(groups, longs) == 2 + 3 + 5 + 2
-    assert P._nbytes([], []) == 0
-    # sizes 3, 2, 2, 1 (bytes): 3 -> first; 2 -> second; 2 -> second (2 < 3); 1 -> first (4 > 3)
-    a, b, c, d = _fake_group(3), _fake_group(2), _fake_long_line(1, 1), _fake_group(1)
-    first, second = P._halves([d, b, a], [c])
-    assert [id(g) for g in first[0]] == [id(a), id(d)] and first[1] == []
-    assert [id(g) for g in second[0]] == [id(b)] and [id(ln) for ln in second[1]] == [id(c)]
-    # sizes 2, 1, 1: 2 -> first; 1 -> second; 1 -> second (1 < 2)
-    a, b, c = _fake_group(2), _fake_group(1), _fake_group(1)
-    first, second = P._halves([b, a, c], [])
-    assert [id(g) for g in first[0]] == [id(a)] and [id(g) for g in second[0]] == [id(b), id(c)]
+    assert pre.factorised == _slip_runs(system) > 3
 
 
 def _two_threads_in_child(system, x, want, pipe):
     import bem.frictional.preconditioner as P
 
-    pre = P.LinePreconditioner(pad=1)
+    pre = P.LinePreconditioner()
     pre.attach(system)
     pipe.send(bool(np.array_equal(system.precondition(x), want)))
+
+
+def test_line_preconditioner_on_two_threads_gives_the_same_result(kernels, monkeypatch):
+    """With THREAD_FROM lowered to 0 the application's transforms and Woodbury terms and
+    the build's columns run on two threads: the result is bit-identical to one thread's;
+    at THREAD_FROM = runs x transform length + 1, or with threads=False, or on a single
+    core, the application stays on one."""
+    import bem.frictional.preconditioner as P
+
+    system = _system(kernels)
+    x = np.random.default_rng(3).normal(size=system.n)
+    one = P.LinePreconditioner(threads=False)
+    monkeypatch.setattr(P, "_second_thread", lambda: pytest.fail("a second thread with threads=False"))
+    one.attach(system)
+    want = system.precondition(x)
+    monkeypatch.undo()
+    used = []
+    real = P._second_thread
+    monkeypatch.setattr(P, "_second_thread", lambda: used.append(1) or real())
+    monkeypatch.setattr(P, "THREAD_FROM", 0)
+    P.LinePreconditioner().attach(system)
+    built = len(used)
+    np.testing.assert_array_equal(system.precondition(x), want)
+    assert built > 0 and len(used) > built
+    runs, F = _runs(system).max(), P.LinePreconditioner()._row_inverses(system.ops, 9).F
+    for threshold, cores, applied in ((runs * F, 2, True), (runs * F + 1, 2, False), (0, 1, False),
+                                      (0, None, False)):
+        monkeypatch.setattr(P, "THREAD_FROM", threshold)
+        monkeypatch.setattr(P.os, "cpu_count", lambda: cores)
+        P.LinePreconditioner().attach(system)
+        used.clear()
+        np.testing.assert_array_equal(system.precondition(x), want)
+        assert bool(used) == applied, (threshold, cores)
 
 
 def test_a_forked_child_builds_and_applies_on_its_own_second_thread(kernels, monkeypatch):
@@ -489,12 +482,11 @@ def test_a_forked_child_builds_and_applies_on_its_own_second_thread(kernels, mon
         pytest.skip("needs two cores and fork")
     system = _system(kernels)
     x = np.random.default_rng(4).normal(size=system.n)
-    one = P.LinePreconditioner(pad=1, threads=False)
+    one = P.LinePreconditioner(threads=False)
     one.attach(system)
     want = system.precondition(x)
     monkeypatch.setattr(P, "THREAD_FROM", 0)
-    monkeypatch.setattr(P, "BUILD_FROM", 0)
-    parent = P.LinePreconditioner(pad=1)
+    parent = P.LinePreconditioner()
     parent.attach(system)
     np.testing.assert_array_equal(system.precondition(x), want)
     assert P._POOL is not None  # the parent's thread is running
@@ -510,140 +502,68 @@ def test_a_forked_child_builds_and_applies_on_its_own_second_thread(kernels, mon
     assert child.exitcode == 0 and receive.poll(1) and receive.recv() is True
 
 
-def test_line_preconditioner_keeps_unchanged_lines_and_refactors_changed_ones(kernels):
-    """A second attach with the same sets inverts nothing; flipping one node between stick
-    and slip re-inverts only its line, and the result is again the exact inverse of the new
-    line blocks (not the old ones)."""
+def test_line_preconditioner_keeps_unchanged_runs_and_rebuilds_changed_ones(kernels):
+    """A second attach with the same sets computes no columns; with every slip direction
+    turned (the same sets) none either, and the result is the exact inverse of the new
+    run blocks (the Woodbury matrices hold the slip law and are built every time), not
+    of the old ones; flipping one node between stick and slip computes only its run's."""
     from bem.frictional.preconditioner import LinePreconditioner
 
     pre = LinePreconditioner(dtype=np.float64, filter_power=0)
     first = _system(kernels)
-    lines = len(set(first.Cj))
+    runs = _slip_runs(first)
     pre.attach(first)
-    again = _system(kernels)
-    pre.attach(again)
-    assert pre.factorised == lines
-    x = np.random.default_rng(2).normal(size=again.n)
-    assert np.abs(again.precondition(_line_blocks(again) @ x) - x).max() < 1e-10 * np.abs(x).max()
+    x = np.random.default_rng(2).normal(size=first.n)
+    for again in (_system(kernels, ops=first.ops), _system(kernels, turn=0.7, ops=first.ops)):
+        pre.attach(again)
+        assert pre.factorised == runs
+        assert np.abs(again.precondition(_line_blocks(again) @ x) - x).max() < 1e-10 * np.abs(x).max()
+    assert np.abs(again.precondition(_line_blocks(first) @ x) - x).max() > 1e-3 * np.abs(x).max()
     node = first.C[first.nC // 2]
-    changed = _system(kernels, flip=node)
+    changed = _system(kernels, flip=node, ops=first.ops)
     pre.attach(changed)
-    assert pre.factorised == lines + 1
-    B = _line_blocks(changed)
-    assert np.abs(changed.precondition(B @ x) - x).max() < 1e-10 * np.abs(x).max()
+    assert pre.factorised == runs + 1
+    assert np.abs(changed.precondition(_line_blocks(changed) @ x) - x).max() < 1e-10 * np.abs(x).max()
     assert np.abs(changed.precondition(_line_blocks(first) @ x) - x).max() > 1e-6
+    other = _system(kernels, seed=5)  # new operators: every run again
+    pre.attach(other)
+    assert pre.factorised == runs + 1 + _slip_runs(other)
 
 
 def test_line_preconditioner_with_global_unknowns(kernels):
     """Load control and a free Omega add two unknowns: the force part of M r is still the
-    line blocks' inverse applied to the force rows, whatever the global rows hold."""
+    run blocks' inverse applied to the force rows, whatever the global rows hold; the
+    global rows are passed on (d) and scaled by the Omega column's coefficient."""
     from bem.frictional.preconditioner import LinePreconditioner
 
     system = _system(kernels, load=20.0, indentation=None, omega=None)
     nC = system.nC
     assert system.n == 3 * nC + 2
     B = _line_blocks(system)
-    rng = np.random.default_rng(4)
-    r = rng.normal(size=system.n)
-    for lu_from in (1000, 1):
-        LinePreconditioner(dtype=np.float64, lu_from=lu_from, filter_power=0).attach(system)
-        got = system.precondition(r)
-        assert got.shape == (system.n,) and np.isfinite(got).all()
-        np.testing.assert_allclose(B @ got[:3 * nC], r[:3 * nC], rtol=0, atol=1e-10 * np.abs(r).max())
-        r2 = r.copy()
-        r2[3 * nC:] *= 7.0
-        np.testing.assert_array_equal(system.precondition(r2)[:3 * nC], got[:3 * nC])
+    r = np.random.default_rng(4).normal(size=system.n)
+    LinePreconditioner(dtype=np.float64, filter_power=0).attach(system)
+    got = system.precondition(r)
+    assert got.shape == (system.n,) and np.isfinite(got).all()
+    np.testing.assert_allclose(B @ got[:3 * nC], r[:3 * nC], rtol=0, atol=1e-10 * np.abs(r).max())
+    assert got[system.iD] == r[system.iD] and got[system.iO] == r[system.iO] / system.ax
+    r2 = r.copy()
+    r2[3 * nC:] *= 7.0
+    np.testing.assert_array_equal(system.precondition(r2)[:3 * nC], got[:3 * nC])
 
 
-def test_singular_long_line_is_an_error_naming_it(kernels, monkeypatch):
-    """A line block that LU cannot factor raises LinAlgError naming its size."""
-    from bem.frictional import preconditioner as pc
-
-    system = _system(kernels)
-    zero = {b: np.zeros_like(k) for b, k in kernels.items()}
-    system.ops.tables["ww"] = zero["ww"]
-    m = int(np.bincount(system.Cj).max())
-    with pytest.raises(np.linalg.LinAlgError, match=r"^singular line block of \d+ contact nodes \(getrf info \d+\)$"):
-        pc.LinePreconditioner(lu_from=1).attach(system)
-    assert m > 1
-
-
-# The preconditioner's bookkeeping (issue 11's normal-block cache and batch reuse): what it
-# keeps is checked by identity and by the blocks it forms (``ops.dense`` recorded), since a
-# kept or rebuilt block gives the same values; what it stores by its documented dtype
-# (single precision unless asked: LinePreconditioner's docstring); and the product is still
-# the exact inverse of the new line blocks each time (2e-5 in single precision, as above).
-# These tests take the lines alone (``filter_power=0``); the row filter has its own below.
-
-def _line_key(system, row):
-    return system.C[system.Cj == row].tobytes()
-
-
-@pytest.mark.parametrize("lu_from, split", [(1000, False), (1, False), (1000, True)],
-                         ids=["inverses", "lu-factors", "split-tangential"])
-def test_a_line_whose_stick_pattern_changes_keeps_its_normal_block(kernels, monkeypatch, lu_from, split):
-    """A line's normal block ``C_ww`` depends on its nodes alone: flipping one node between
-    stick and slip re-inverts that line's tangential block only. ``C_ww`` is not formed
-    again (``ops.dense("ww")`` not called; the other lines form nothing), the kept normal
-    inverse (or LU factors) is the same object, stored in single precision like the
-    tangential factors and the slip coupling, and the product is the exact inverse of the
-    new line blocks (not of the old ones); by inverses, LU factors (``lu_from = 1``) or the
-    split tangential inverse (``SPLIT_FROM = 1``)."""
-    from bem.frictional import preconditioner as pc
-
-    if split:
-        monkeypatch.setattr(pc, "SPLIT_FROM", 1)
-    pre = pc.LinePreconditioner(lu_from=lu_from, filter_power=0)
-    assert pre.dtype == np.float32
-    first = _system(kernels)
-    pre.attach(first)
-    node = first.C[first.nC // 2]
-    row = first.Cj[first.nC // 2]
-    nodes = _line_key(first, row)
-    kept = pre._normal[nodes]
-    lu = lu_from == 1
-    assert (kept[0] if lu else kept).dtype == np.float32
-    changed = _system(kernels, flip=node)
-    formed = []
-    dense = changed.ops.dense
-    monkeypatch.setattr(changed.ops, "dense", lambda name, *a: formed.append(name) or dense(name, *a))
-    lines = len(set(first.Cj))
-    pre.attach(changed)
-    assert pre.factorised == lines + 1
-    assert formed and "ww" not in formed, formed
-    assert pre._normal[nodes] is kept
-    key = nodes + changed.stick[changed.Cj == row].tobytes()
-    a_n, a_t, coup = pre._cache[key]
-    for block in ((a_n[0], a_t[0], coup) if lu else (a_n, a_t, coup)):
-        assert block.dtype == np.float32
-    x = np.random.default_rng(5).normal(size=changed.n)
-    new = np.abs(changed.precondition(_line_blocks(changed) @ x) - x).max() / np.abs(x).max()
-    old = np.abs(changed.precondition(_line_blocks(first) @ x) - x).max() / np.abs(x).max()
-    assert new < 2e-5 and old > 1e-3  # measured 1.2e-7 (inverses), 5.2e-7 (LU); 0.2 against the old blocks
-
-
-def test_an_unchanged_attach_reuses_its_batches(kernels):
-    """Lines are applied in batches of equal padded size (one per size: lines of 3 to 9
-    nodes padded to 8 and 16), their blocks stored in single precision; a second attach
-    with the same sets reuses the same batch arrays (no copy, none added) and is still the
-    exact inverse of the line blocks."""
+def test_an_all_stick_state_needs_no_woodbury_terms(kernels):
+    """With every contact node in stick the runs' blocks are Toeplitz: no columns are
+    computed, and the result is still the exact inverse of the run blocks."""
     from bem.frictional.preconditioner import LinePreconditioner
 
-    pre = LinePreconditioner(filter_power=0)
-    first = _system(kernels)
-    pre.attach(first)
-    batches = pre._batches[1]
-    counts = np.bincount(first.Cj)
-    sizes = {-(-int(m) // 8) * 8 for m in counts[counts > 0]}
-    assert len(sizes) > 1 and len(batches) == len(sizes)
-    for idx_n, idx_t, inv_n, inv_t, coup in batches:
-        assert inv_n.dtype == inv_t.dtype == coup.dtype == np.float32
-        assert inv_n.shape[1] in sizes and inv_t.shape[1] == 2 * inv_n.shape[1]
-    again = _system(kernels)
-    pre.attach(again)
-    assert pre._batches[1] is batches and len(batches) == len(sizes)
-    x = np.random.default_rng(6).normal(size=again.n)
-    assert np.abs(again.precondition(_line_blocks(again) @ x) - x).max() < 2e-5 * np.abs(x).max()
+    system = _system(kernels, seed=1)
+    stuck = _system(kernels, seed=1, flip=system.C[system.B])
+    assert stuck.B.size == 0
+    pre = LinePreconditioner(dtype=np.float64, filter_power=0)
+    pre.attach(stuck)
+    assert pre.factorised == 0
+    x = np.random.default_rng(7).normal(size=stuck.n)
+    assert np.abs(stuck.precondition(_line_blocks(stuck) @ x) - x).max() < 1e-10 * np.abs(x).max()
 
 
 # --------------------------------------------------------------------------------------
