@@ -377,26 +377,44 @@ class LinePreconditioner:
         groups = []
         for P, members in by_size.items():
             L = len(members)
-            K = np.zeros((L, 2 * P, 2 * P))
+            p = count[members]
+            valid = np.arange(P) < p[:, None]  # (L, P): the slip nodes of each run, then padding
+            s = np.where(valid, first[members][:, None] + np.arange(P), 0)  # their slip indices
             Y = np.zeros((L, 2, P, M), self.dtype)
-            at, where = [], []
             for b, q in enumerate(members):
-                p = count[q]
-                s = np.arange(first[q], first[q] + p)
-                Y[b, :, :p] = blocks[q][1]
-                Gx, Gy = Y[b, 0, :p][:, local[s]].T, Y[b, 1, :p][:, local[s]].T  # G[i, j]: row P_i, column P_j
-                e1, e2, k1 = ex[s][:, None], ey[s][:, None], kk[s][:, None]
-                K[b, :p, :p] = diag * e1 * Gx
-                K[b, :p, P:P + p] = diag * e2 * Gy
-                K[b, P:P + p, :p] = k1 * e2 * Gx
-                K[b, P:P + p, P:P + p] = -k1 * e1 * Gy
-                d = np.arange(p)
-                K[b, P + d, d] -= e2[:, 0]
-                K[b, P + d, P + d] += e1[:, 0]
-                pad = np.r_[p:P, P + p:2 * P]
-                K[b, pad, pad] = 1.0  # padding: identity
-                at.append(b * 2 * P + np.r_[d, P + d])
-                where.append(np.r_[s, B.size + s])
-            groups.append((np.array(members), np.concatenate(at), np.concatenate(where),
-                           np.linalg.inv(K).astype(self.dtype), Y))
-        return groups
+                Y[b, :, :p[b]] = blocks[q][1]
+            # G[i, j]: row P_i of column P_j of the runs' Toeplitz inverses (0 on padding)
+            loc = np.where(valid, local[s], 0)[:, None, None, :]
+            G = np.take_along_axis(Y, np.broadcast_to(loc, (L, 2, P, P)), 3).swapaxes(2, 3) * valid[:, None, None, :]
+            e1, e2, k1 = (np.where(valid, a[s], 0.0)[:, :, None] for a in (ex, ey, kk))
+            K = np.zeros((L, 2 * P, 2 * P))
+            K[:, :P, :P] = diag * e1 * G[:, 0]
+            K[:, :P, P:] = diag * e2 * G[:, 1]
+            K[:, P:, :P] = k1 * e2 * G[:, 0]
+            K[:, P:, P:] = -k1 * e1 * G[:, 1]
+            d = np.arange(P)
+            K[:, P + d, d] -= e2[:, :, 0]
+            K[:, P + d, P + d] += e1[:, :, 0]
+            pad = np.concatenate([~valid, ~valid], 1)
+            K[:, np.arange(2 * P), np.arange(2 * P)] += pad  # padding: identity
+            at = (np.arange(L)[:, None] * 2 * P + np.concatenate([d, P + d])[None, :])[np.concatenate([valid, valid], 1)]
+            where = np.concatenate([s, B.size + s], 1)[np.concatenate([valid, valid], 1)]
+            groups.append([np.array(members), at, where, K, Y])
+        # the Woodbury matrices' inverses, on two threads (about equal flops each)
+        cost = [g[3].shape[0] * g[3].shape[1] ** 3 for g in groups]
+        order = np.argsort(cost)[::-1]
+        halves, load = ([], []), [0, 0]
+        for i in order:
+            k = int(load[1] < load[0])
+            halves[k].append(groups[i])
+            load[k] += cost[i]
+
+        def invert(part):
+            for g in part:
+                g[3] = np.linalg.inv(g[3]).astype(self.dtype)
+
+        job = _second_thread().submit(invert, halves[1]) if self.threads and (os.cpu_count() or 1) > 1 else None
+        invert(halves[0] if job is not None else groups)
+        if job is not None:
+            job.result()
+        return [tuple(g) for g in groups]
