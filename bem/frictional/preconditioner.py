@@ -64,9 +64,12 @@ __all__ = ["LinePreconditioner", "RowInverses", "levinson", "FILTER_POWER", "THR
 #: or on both sides: no better (129 x 129: 35 at 0.5; 0.3 on each side 39); the normal or
 #: the tangential components alone: 67 and 56
 FILTER_POWER = 0.5
-#: an application's transforms run on two threads (half the runs each) when its runs
-#: take this many transform points or more (runs times the transform length)
-THREAD_FROM = 50_000
+#: an application runs on two threads (half the runs each) when the runs' operands (the
+#: inverses or the spectra of the three blocks) take this many bytes or more
+THREAD_FROM = 4_000_000
+#: runs of up to this many nodes (the longest on the grid) are solved by the inverses
+#: themselves, longer ones by transforms (:class:`RowInverses`)
+DENSE_UPTO = 96
 #: the columns of the runs' Toeplitz inverses at their slip nodes are computed for about
 #: this many slip nodes at a time (padded; the transforms' working memory, about 20 kB
 #: a slip node at 513 x 513)
@@ -125,11 +128,16 @@ class RowInverses:
         ``J y`` and ``Z J x`` (conjugated: correlations) and of ``x / x_0``, ``Z y / x_0``.
     units : ndarray, shape ``(M, F // 2 + 1)``
         The spectra of the unit vectors ``e_0 ... e_{M - 1}``.
+    matrices : ndarray, shape ``(3, M, M, M)``, or None
+        With ``dense`` (default: ``M <=`` :data:`DENSE_UPTO`) the inverses themselves, per
+        block and length (``T_n^{-1}`` in the leading ``n x n`` of index ``n - 1``, 0
+        around it), from the same formula: runs this short are applied faster by batched
+        products than by transforms.
     """
 
     BLOCKS = ("ww", "duu", "dvv")
 
-    def __init__(self, ops, M: int):
+    def __init__(self, ops, M: int, dense: bool | None = None):
         Ky, Kx = ops.grid.shape
         self.M = M = min(M, Kx)
         self.F = F = sfft.next_fast_len(2 * M - 1, real=True)
@@ -139,6 +147,8 @@ class RowInverses:
         rev = src >= 0
         src = np.where(rev, src, 0)
         self.spectra = np.empty((3, 4, M, F // 2 + 1), complex)
+        dense = M <= DENSE_UPTO if dense is None else dense
+        self.matrices = np.empty((3, M, M, M)) if dense else None
         for b, name in enumerate(self.BLOCKS):
             t = (1.0 if name == "ww" else ax) * ops.tables[name][Ky - 1, Kx - M:Kx - 1 + M]
             x, y = levinson(t, M)
@@ -151,34 +161,65 @@ class RowInverses:
             spec = sfft.rfft(np.stack([Jy, ZJx, x / x0, Zy / x0]), F)
             spec[:2] = np.conj(spec[:2])
             self.spectra[b] = spec
+            if dense:
+                # the formula entry by entry: T^{-1}[i, j] = T^{-1}[i - 1, j - 1] + D[i, j],
+                # D = (x (J y)^T - (Z y) (Z J x)^T) / x_0 (0 beyond each length)
+                D = (x[:, :, None] * Jy[:, None, :] - Zy[:, :, None] * ZJx[:, None, :]) / x0[:, :, None]
+                G = self.matrices[b]
+                G[:, 0] = D[:, 0]
+                for r in range(1, M):
+                    G[:, r, 0] = D[:, r, 0]
+                    G[:, r, 1:] = G[:, r - 1, :-1] + D[:, r, 1:]
+                G *= rev[:, :, None] & rev[:, None, :]  # the sums run on along the diagonals
         self.units = np.exp(-2j * np.pi / F * np.outer(i, np.arange(F // 2 + 1)))
         self._cast: dict = {}
 
-    def cast(self, dtype) -> np.ndarray:
-        """:attr:`spectra` in complex ``dtype`` (kept)."""
+    def operand(self, b: int, lens: np.ndarray, dtype) -> np.ndarray:
+        """What :meth:`solve` needs for block ``b`` (0: ``ww``, 1: ``uu``, 2: ``vv``) on
+        runs of ``lens`` nodes, in real ``dtype``: their :attr:`matrices` ``(R, M, M)``, or
+        their :attr:`spectra` ``(4, R, F // 2 + 1)`` in the matching complex type."""
         dtype = np.dtype(dtype)
         if dtype not in self._cast:
-            self._cast[dtype] = self.spectra.astype(dtype)
-        return self._cast[dtype]
+            self._cast[dtype] = (self.matrices if self.matrices is not None else self.spectra).astype(
+                dtype if self.matrices is not None else np.result_type(dtype, np.complex64))
+        table = self._cast[dtype][b]
+        return table[lens - 1] if self.matrices is not None else table[:, lens - 1]
 
-    def solve(self, spectra: np.ndarray, v: np.ndarray | None, unit: np.ndarray | None = None,
-              threads: bool = False) -> np.ndarray:
-        """``T^{-1} v`` for each row of ``v`` ``(..., M)`` (a run's values in its first ``n``
-        entries, 0 after them), ``spectra`` ``(4, ..., F // 2 + 1)`` the rows' :attr:`spectra`
-        (broadcast against them); the first ``n`` entries of each result row are the run's.
-        ``unit``: the spectra of ``v`` when known (then ``v`` is not read). With ``threads``
-        the rows are split between two threads (the transforms release the GIL)."""
-        rows = (v if unit is None else unit).shape[0]
+    def solve(self, operand: np.ndarray, v: np.ndarray, threads: bool = False) -> np.ndarray:
+        """``T^{-1} v`` for each row of ``v`` ``(R, M)`` (a run's values in its first ``n``
+        entries, 0 after them), ``operand`` the runs' :meth:`operand`; the first ``n``
+        entries of each result row are the run's. With ``threads`` the rows are split
+        between two threads (the transforms and products release the GIL)."""
+        dense = self.matrices is not None
+        rows = v.shape[0]
         if not threads or rows < 2:
-            return self._solve(spectra, v, unit)
+            return self._apply(operand, v, dense)
         half = rows // 2
-        parts = [(spectra[:, :half], None if v is None else v[:half], None if unit is None else unit[:half]),
-                 (spectra[:, half:], None if v is None else v[half:], None if unit is None else unit[half:])]
-        job = _second_thread().submit(self._solve, *parts[1])
-        first = self._solve(*parts[0])
+        lo, hi = ((operand[:half], operand[half:]) if dense else (operand[:, :half], operand[:, half:]))
+        job = _second_thread().submit(self._apply, hi, v[half:], dense)
+        first = self._apply(lo, v[:half], dense)
         return np.concatenate([first, job.result()])
 
-    def _solve(self, spectra, v, unit):
+    def _apply(self, operand, v, dense):
+        return np.matmul(operand, v[:, :, None])[:, :, 0] if dense else self._transform(operand, v)
+
+    def columns(self, b: int, lens: np.ndarray, pos: np.ndarray, dtype, threads: bool = False) -> np.ndarray:
+        """The columns ``pos`` ``(L, P)`` of the inverses of block ``b`` for runs of ``lens``
+        (``L``) nodes, as rows ``(L, P, M)`` in real ``dtype``."""
+        if self.matrices is not None:
+            mats = self.operand(b, lens, dtype)
+            return np.take_along_axis(mats, pos[:, None, :], 2).swapaxes(1, 2)
+        spec = self.operand(b, lens, dtype)[:, :, None]
+        unit = self.units[pos].astype(spec.dtype)
+        if not threads or len(lens) < 2:
+            return self._transform(spec, None, unit)
+        half = len(lens) // 2
+        job = _second_thread().submit(self._transform, spec[:, half:], None, unit[half:])
+        first = self._transform(spec[:, :half], None, unit[:half])
+        return np.concatenate([first, job.result()])
+
+    def _transform(self, spectra, v, unit=None):
+        """Gohberg-Semencul by transforms (``unit``: the spectra of ``v``, then not read)."""
         F, M = self.F, self.M
         V = sfft.rfft(v, F) if unit is None else unit
         w = sfft.irfft(np.stack([spectra[0] * V, spectra[1] * V]), F)
@@ -259,9 +300,8 @@ class LinePreconditioner:
         place = np.zeros(R * M, bool)  # the contact nodes' places in the runs (R, M), in order
         place[run * M + np.arange(nC) - starts[run]] = True
         cplx = np.complex64 if self.dtype == np.float32 else np.complex128
-        table = inv.cast(cplx)
-        spec_n = table[0][:, lens - 1]
-        spec_t = np.concatenate([table[1][:, lens - 1], table[2][:, lens - 1]], 1)
+        spec_n = inv.operand(0, lens, self.dtype)
+        spec_t = np.concatenate([inv.operand(b, lens, self.dtype) for b in (1, 2)], 0 if inv.matrices is not None else 1)
         groups = self._woodbury(system, inv, starts, lens, run)
         slip = (run * M + np.arange(nC) - starts[run])[system.B]
         coup = np.zeros(R * M, self.dtype)
@@ -269,7 +309,8 @@ class LinePreconditioner:
         coup = coup.reshape(R, M)
         dt, diag = self.dtype, system.diag
         ex, ey, kk = (a.astype(dt) for a in (system.dir_x, system.dir_y, system.slope))
-        two = self.threads and (os.cpu_count() or 1) > 1 and R * F >= THREAD_FROM
+        size = spec_n.nbytes + spec_t.nbytes
+        two = self.threads and (os.cpu_count() or 1) > 1 and size >= THREAD_FROM
         om_step = 1.0 / system.ax  # the inverse of the scaled Omega's stick-row coefficient
         box, spectra = system.box, None
         if self.filter_power:
@@ -352,8 +393,6 @@ class LinePreconditioner:
         # through the inverses (their spectra known), runs of about as many slip nodes
         # together
         if todo:
-            table = inv.cast(np.complex64 if self.dtype == np.float32 else np.complex128)
-            units = inv.units.astype(table.dtype)
             two = self.threads and (os.cpu_count() or 1) > 1
             todo.sort(key=lambda q: count[q])
             while todo:
@@ -364,8 +403,7 @@ class LinePreconditioner:
                 pos = np.zeros((len(part), P), int)
                 for b, q in enumerate(part):
                     pos[b, :count[q]] = local[first[q]:first[q] + count[q]]
-                spec = table[1:3][:, :, lens[part] - 1, None]  # (2, 4, L, 1, F / 2 + 1)
-                cols = [inv.solve(spec[b], None, unit=units[pos], threads=two) for b in (0, 1)]
+                cols = [inv.columns(1 + b, lens[part], pos, self.dtype, two) for b in (0, 1)]
                 for b, q in enumerate(part):
                     blocks[q] = (blocks[q][0], np.stack([c[b, :count[q]] for c in cols]))
                 self.factorised += len(part)

@@ -371,46 +371,66 @@ def test_levinson_gives_the_first_and_last_columns_for_every_length(kernels):
         levinson(np.r_[np.ones(M - 1), 0.0, np.ones(M - 1)], M)
 
 
+@pytest.mark.parametrize("dense", [False, True])
 @pytest.mark.parametrize("threads", [False, True])
-def test_row_inverses_solve_the_runs_toeplitz_systems(kernels, threads):
-    """:class:`RowInverses` on the layer's grid: for runs of 1 to ``M`` nodes, batched
-    with others of different lengths and zero beyond their own, ``solve`` equals numpy's
-    solve with the run's Toeplitz block (``C_ww``, ``a_x`` times the differenced
-    ``C_uu``, ``C_vv``) to 1e-12 (measured 1e-15), and from the unit vectors' spectra it
-    gives the inverse's columns; the transform is at least ``2 M - 1`` long (no wrap), and
-    two threads give the same bits as one."""
+def test_row_inverses_solve_the_runs_toeplitz_systems(kernels, threads, dense):
+    """:class:`RowInverses` on the layer's grid, by transforms or by the inverses
+    themselves: for runs of 1 to ``M`` nodes, batched with others of different lengths and
+    zero beyond their own, ``solve`` equals numpy's solve with the run's Toeplitz block
+    (``C_ww``, ``a_x`` times the differenced ``C_uu``, ``C_vv``) to 1e-12 (measured 1e-15),
+    ``columns`` gives the inverse's columns, and the dense inverses are numpy's, 0 outside
+    their length; the transform is at least ``2 M - 1`` long (no wrap), and two threads
+    give the same bits as one."""
     from bem.frictional import RollingOperators
-    from bem.frictional.preconditioner import RowInverses
+    from bem.frictional.preconditioner import DENSE_UPTO, RowInverses
 
     ops = RollingOperators(GRID, kernels)
     Ky, Kx = GRID.shape
-    inv = RowInverses(ops, 16)
+    inv = RowInverses(ops, 16, dense=dense)
     assert inv.M == 16 and inv.F >= 31 and inv.spectra.shape == (3, 4, 16, inv.F // 2 + 1)
+    assert (inv.matrices is not None) == dense
     assert RowInverses(ops, 99).M == Kx  # no run is longer than a grid row
+    assert (RowInverses(ops, 16).matrices is not None) == (16 <= DENSE_UPTO)
     lens = np.array([1, 2, 7, 16, 9, 16])
+    pos = np.array([[0, 0], [1, 0], [6, 2], [15, 3], [4, 8], [0, 9]])
     rng = np.random.default_rng(8)
     v = rng.normal(size=(lens.size, 16)) * (np.arange(16) < lens[:, None])
     for b, (name, scale) in enumerate((("ww", 1.0), ("duu", GRID.spacing_x), ("dvv", GRID.spacing_x))):
         t = scale * ops.tables[name][Ky - 1, Kx - 16:Kx + 15]
-        got = inv.solve(inv.spectra[b][:, lens - 1], v, threads=threads)
-        cols = inv.solve(inv.spectra[b][:, lens - 1], None, unit=inv.units[lens - 1], threads=threads)
-        np.testing.assert_array_equal(got, inv.solve(inv.spectra[b][:, lens - 1], v))
+        got = inv.solve(inv.operand(b, lens, np.float64), v, threads=threads)
+        cols = inv.columns(b, lens, pos, np.float64, threads=threads)
+        np.testing.assert_array_equal(got, inv.solve(inv.operand(b, lens, np.float64), v))
+        assert cols.shape == (lens.size, 2, 16)
+        single = inv.solve(inv.operand(b, lens, np.float32), v.astype(np.float32))
+        assert single.dtype == np.float32
         for row, n in enumerate(lens):
             T = _toeplitz(t, n)
             ref = np.linalg.solve(T, v[row, :n])
             assert np.abs(got[row, :n] - ref).max() < 1e-12 * np.abs(ref).max()
-            col = np.linalg.inv(T)[:, n - 1]
-            assert np.abs(cols[row, :n] - col).max() < 1e-12 * np.abs(col).max()
+            assert np.abs(single[row, :n] - ref).max() < 1e-5 * np.abs(ref).max()
+            Ti = np.linalg.inv(T)
+            for k in range(2):
+                if pos[row, k] < n:
+                    col = Ti[:, pos[row, k]]
+                    assert np.abs(cols[row, k, :n] - col).max() < 1e-12 * np.abs(col).max()
+            if dense:
+                assert np.abs(inv.matrices[b, n - 1, :n, :n] - Ti).max() < 1e-12 * np.abs(Ti).max()
+                assert not inv.matrices[b, n - 1, n:].any() and not inv.matrices[b, n - 1, :, n:].any()
 
 
 @pytest.mark.parametrize("dtype, tol", [(np.float64, 1e-10), (np.float32, 2e-5)])
 @pytest.mark.parametrize("hole", [False, True])
-def test_line_preconditioner_is_the_inverse_of_its_run_blocks(kernels, dtype, tol, hole):
+@pytest.mark.parametrize("dense_upto", [0, 96])
+def test_line_preconditioner_is_the_inverse_of_its_run_blocks(kernels, monkeypatch, dtype, tol, hole, dense_upto):
     """M (B x) = x for the run blocks B of a contact of 67 nodes on 9 grid rows (runs of 3
     to 9 nodes, stick and slip mixed; with a hole, one row in two runs), in double and
-    single precision; measured 2e-15 (double) and 3e-7 (single) relative. The slip-slip
-    columns are computed once for every run with slip nodes."""
+    single precision, by transforms or by the dense inverses; measured 2e-15 (double) and
+    3e-7 (single) relative. The slip-slip columns are computed once for every run with
+    slip nodes."""
+    from bem.frictional import preconditioner
     from bem.frictional.preconditioner import LinePreconditioner
+
+    monkeypatch.setattr(preconditioner, "DENSE_UPTO", dense_upto)
 
     system = _system(kernels)
     if hole:
@@ -422,6 +442,7 @@ def test_line_preconditioner_is_the_inverse_of_its_run_blocks(kernels, dtype, to
     x = np.random.default_rng(1).normal(size=system.n)
     pre = LinePreconditioner(dtype=dtype, filter_power=0)
     pre.attach(system)
+    assert (pre.inverses.matrices is not None) == (dense_upto > 0)
     got = system.precondition(B @ x)
     assert got.shape == (system.n,) and got.dtype == np.float64
     assert np.abs(got - x).max() < tol * np.abs(x).max()
@@ -436,20 +457,24 @@ def _two_threads_in_child(system, x, want, pipe):
     pipe.send(bool(np.array_equal(system.precondition(x), want)))
 
 
-def test_line_preconditioner_on_two_threads_gives_the_same_result(kernels, monkeypatch):
-    """With THREAD_FROM lowered to 0 the application's transforms and Woodbury terms and
-    the build's columns run on two threads: the result is bit-identical to one thread's;
-    at THREAD_FROM = runs x transform length + 1, or with threads=False, or on a single
-    core, the application stays on one."""
+@pytest.mark.parametrize("dense_upto", [0, 96])
+def test_line_preconditioner_on_two_threads_gives_the_same_result(kernels, monkeypatch, dense_upto):
+    """With THREAD_FROM lowered to 0 the application's solves and Woodbury terms and the
+    build's columns and inversions run on two threads: the result is bit-identical to one
+    thread's (by transforms and by the dense inverses); from THREAD_FROM = the bytes of
+    the runs' operands (the three blocks' inverses or spectra, single precision) the
+    application goes to two threads, below it, with threads=False, or on a single core
+    it stays on one."""
     import bem.frictional.preconditioner as P
 
+    monkeypatch.setattr(P, "DENSE_UPTO", dense_upto)
     system = _system(kernels)
     x = np.random.default_rng(3).normal(size=system.n)
     one = P.LinePreconditioner(threads=False)
-    monkeypatch.setattr(P, "_second_thread", lambda: pytest.fail("a second thread with threads=False"))
-    one.attach(system)
-    want = system.precondition(x)
-    monkeypatch.undo()
+    with monkeypatch.context() as m:
+        m.setattr(P, "_second_thread", lambda: pytest.fail("a second thread with threads=False"))
+        one.attach(system)
+        want = system.precondition(x)
     used = []
     real = P._second_thread
     monkeypatch.setattr(P, "_second_thread", lambda: used.append(1) or real())
@@ -458,9 +483,12 @@ def test_line_preconditioner_on_two_threads_gives_the_same_result(kernels, monke
     built = len(used)
     np.testing.assert_array_equal(system.precondition(x), want)
     assert built > 0 and len(used) > built
-    runs, F = _runs(system).max(), P.LinePreconditioner()._row_inverses(system.ops, 9).F
-    for threshold, cores, applied in ((runs * F, 2, True), (runs * F + 1, 2, False), (0, 1, False),
-                                      (0, None, False)):
+    runs = _runs(system)
+    lens = np.bincount(runs)[1:]
+    inv = one.inverses
+    size = sum(inv.operand(b, lens, np.float32).nbytes for b in range(3))
+    assert size == (3 * lens.size * inv.M ** 2 * 4 if dense_upto else 12 * lens.size * (inv.F // 2 + 1) * 8)
+    for threshold, cores, applied in ((size, 2, True), (size + 1, 2, False), (0, 1, False), (0, None, False)):
         monkeypatch.setattr(P, "THREAD_FROM", threshold)
         monkeypatch.setattr(P.os, "cpu_count", lambda: cores)
         P.LinePreconditioner().attach(system)
