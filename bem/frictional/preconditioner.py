@@ -19,14 +19,15 @@ gap rows and the upwind-differenced ``a_x C_uu``, ``a_x C_vv`` in its stick rows
 Toeplitz matrix is fixed by its first and last columns (Gohberg-Semencul: two products
 of triangular Toeplitz matrices, ``O(m log m)`` by FFT), and Levinson's recursion gives
 those columns for every length up to the longest run at once (``O(M^2)``, once a grid,
-:class:`RowInverses`). The slip rows (the slip law) replace ``2 p`` of the run's ``2 m``
-tangential rows: Woodbury's identity with the slip-slip block of the Toeplitz inverse
-(a ``2 p x 2 p`` matrix a run) makes the solve exact. Against the dense inverse of each
-line (the module before issue 11's ninth pass) the memory a run falls from ``5 m^2``
-numbers to ``O(m + p^2)`` and an application from ``O(m^2)`` to ``O(m log m + p^2)``
-(section 11, one application, one thread: 257 x 257 13.6 -> 11 ms, 513 x 513 173 ->
-64 ms; the same result to rounding); the build from ``O(m^3)`` to
-``O(p m log m + p^3)``.
+:class:`RowInverses`; runs of up to :data:`DENSE_UPTO` nodes take the inverses themselves,
+from the same formula). The slip rows (the slip law) replace ``2 p`` of the run's ``2 m``
+tangential rows: Woodbury's identity with the Toeplitz inverses' columns at the slip
+nodes (``2 p m`` numbers) and a ``2 p x 2 p`` matrix a run makes the solve exact. Against
+the dense inverse of each line (the module before issue 11's ninth pass: ``5 m^2``
+numbers a line, ``O(m^3)`` to build) the results agree to rounding and the build is
+cheap (``O(p m log m + p^3)``); section 11, one application on the converged state, single
+precision: 513 x 513 103-173 -> 57-76 ms, 257 x 257 about 10 % faster, smaller grids
+10-25 % slower; whole solves 1.1-1.7x faster (``BENCHMARKS.md``, ninth pass).
 
 Why a filter after them. A line sees its own row's compliance only, the symbol averaged
 over ``k_y``, and so gets forces smooth in ``y`` too large and forces alternating from
