@@ -68,8 +68,11 @@ FILTER_POWER = 0.5
 #: an application runs on two threads (half the runs each) when the runs' operands (the
 #: inverses or the spectra of the three blocks) take this many bytes or more
 THREAD_FROM = 4_000_000
-#: runs of up to this many nodes (the longest on the grid) are solved by the inverses
-#: themselves, longer ones by transforms (:class:`RowInverses`)
+#: when the longest run (rounded up to 16 nodes) has at most this many nodes, every run is
+#: solved by its inverse itself (:attr:`RowInverses.matrices`, ``24 M^3`` bytes), else by
+#: transforms. Measured (one application against the former dense line inverses, alternated
+#: 40 times, new / old): issue case 61 x 61 1.15 by inverses, 1.71 by transforms; runs of up
+#: to 112 nodes (121 x 121, 129 x 129) 1.12-1.25 by inverses, 0.98-1.21 by transforms
 DENSE_UPTO = 96
 #: the columns of the runs' Toeplitz inverses at their slip nodes are computed for about
 #: this many slip nodes at a time (padded; the transforms' working memory, about 20 kB
@@ -262,15 +265,17 @@ class LinePreconditioner:
     row are solved apart.
 
     Use :meth:`attach` for each new system: it builds what it must and sets
-    ``system.precondition``. The slip-slip blocks of a run's Toeplitz inverses are kept
-    while its nodes and stick pattern repeat (``factorised`` counts the runs they were
-    computed for); the ``2 p x 2 p`` Woodbury matrices, which hold the slip directions and
-    slopes, are built every time, so the solve is exact for every state. The applications
-    run in ``dtype`` (single by default: the flexible GMRES of :func:`bem.linear.fgmres`
-    keeps every preconditioned vector, so rounding there costs no accuracy), the Toeplitz
-    columns too, the Woodbury matrices inverted in double; with ``threads`` a large
-    application's transforms (:data:`THREAD_FROM`) and the build's run on two threads. ``filter_power`` (default :data:`FILTER_POWER`, read at
-    construction; 0: the lines alone) sets the row filter applied after the lines.
+    ``system.precondition``. The columns of a run's Toeplitz inverses at its slip nodes
+    are kept while its nodes and stick pattern repeat (``factorised`` counts the runs they
+    were computed for); the ``2 p x 2 p`` Woodbury matrices, which hold the slip directions
+    and slopes, are built every time, so the solve is exact for every state. The
+    applications run in ``dtype`` (single by default: the flexible GMRES of
+    :func:`bem.linear.fgmres` keeps every preconditioned vector, so rounding there costs
+    no accuracy), the columns too, the Woodbury matrices are inverted in double. With
+    ``threads`` an application whose operands take :data:`THREAD_FROM` bytes or more, and
+    the build's columns and inversions, run on two threads. ``filter_power`` (default
+    :data:`FILTER_POWER`, read at construction; 0: the lines alone) sets the row filter
+    applied after the lines.
     """
 
     def __init__(self, dtype=np.float32, threads: bool = True, filter_power: float | None = None):
