@@ -15,7 +15,8 @@ rad/s so that the unknowns are O(1) at any speed). Rows, all in metres:
 * ``diag sum N = diag P`` (load control) and the loading mode's row (``Omega`` free).
 
 ``diag`` is ``C_ww`` of a node on itself (m/N). :func:`force_rows` writes the rows of
-the forces once, for the dense matrix, the FFT product and the preconditioner's blocks.
+the forces once, for the dense matrix and the FFT product (the preconditioner writes the
+slip rows' Woodbury matrices from the same equations, :mod:`bem.frictional.preconditioner`).
 """
 
 from __future__ import annotations
