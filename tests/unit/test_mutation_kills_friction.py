@@ -371,36 +371,38 @@ def test_levinson_gives_the_first_and_last_columns_for_every_length(kernels):
         levinson(np.r_[np.ones(M - 1), 0.0, np.ones(M - 1)], M)
 
 
+@pytest.mark.parametrize("M", [16, 13])
 @pytest.mark.parametrize("dense", [False, True])
 @pytest.mark.parametrize("threads", [False, True])
-def test_row_inverses_solve_the_runs_toeplitz_systems(kernels, threads, dense):
+def test_row_inverses_solve_the_runs_toeplitz_systems(kernels, threads, dense, M):
     """:class:`RowInverses` on the layer's grid, by transforms or by the inverses
     themselves: for runs of 1 to ``M`` nodes, batched with others of different lengths and
     zero beyond their own, ``solve`` equals numpy's solve with the run's Toeplitz block
     (``C_ww``, ``a_x`` times the differenced ``C_uu``, ``C_vv``) to 1e-12 (measured 1e-15),
     ``columns`` gives the inverse's columns, and the dense inverses are numpy's, 0 outside
     their length; the transform is at least ``2 M - 1`` long (no wrap), and two threads
-    give the same bits as one."""
+    give the same bits as one; an odd transform length (``M = 13``: 25) as an even one."""
     from bem.frictional import RollingOperators
     from bem.frictional.preconditioner import DENSE_UPTO, RowInverses
 
     ops = RollingOperators(GRID, kernels)
     Ky, Kx = GRID.shape
-    inv = RowInverses(ops, 16, dense=dense)
-    assert inv.M == 16 and inv.F >= 31 and inv.spectra.shape == (3, 4, 16, inv.F // 2 + 1)
+    inv = RowInverses(ops, M, dense=dense)
+    assert inv.M == M and inv.F == {16: 32, 13: 25}[M] and inv.spectra.shape == (3, 4, M, inv.F // 2 + 1)
     assert (inv.matrices is not None) == dense
     assert RowInverses(ops, 99).M == Kx  # no run is longer than a grid row
     assert (RowInverses(ops, 16).matrices is not None) == (16 <= DENSE_UPTO)
-    lens = np.array([1, 2, 7, 16, 9, 16])
-    pos = np.array([[0, 0], [1, 0], [6, 2], [15, 3], [4, 8], [0, 9]])
+    lens = np.array([1, 2, 7, M, 9, M])
+    pos = np.array([[0, 0], [1, 0], [6, 2], [M - 1, 3], [4, 8], [0, 9]])
     rng = np.random.default_rng(8)
-    v = rng.normal(size=(lens.size, 16)) * (np.arange(16) < lens[:, None])
+    v = rng.normal(size=(lens.size, M)) * (np.arange(M) < lens[:, None])
     for b, (name, scale) in enumerate((("ww", 1.0), ("duu", GRID.spacing_x), ("dvv", GRID.spacing_x))):
-        t = scale * ops.tables[name][Ky - 1, Kx - 16:Kx + 15]
+        t = scale * ops.tables[name][Ky - 1, Kx - M:Kx - 1 + M]
         got = inv.solve(inv.operand(b, lens, np.float64), v, threads=threads)
         cols = inv.columns(b, lens, pos, np.float64, threads=threads)
         np.testing.assert_array_equal(got, inv.solve(inv.operand(b, lens, np.float64), v))
-        assert cols.shape == (lens.size, 2, 16)
+        assert cols.shape == (lens.size, 2, M)
+        assert inv.columns(b, lens, pos, np.float32, threads=threads).dtype == np.float32
         single = inv.solve(inv.operand(b, lens, np.float32), v.astype(np.float32))
         assert single.dtype == np.float32
         for row, n in enumerate(lens):
@@ -556,6 +558,41 @@ def test_line_preconditioner_keeps_unchanged_runs_and_rebuilds_changed_ones(kern
     other = _system(kernels, seed=5)  # new operators: every run again
     pre.attach(other)
     assert pre.factorised == runs + 1 + _slip_runs(other)
+
+
+def test_line_preconditioner_keeps_its_row_inverses_while_they_fit(kernels, monkeypatch):
+    """The :class:`RowInverses` of a grid's operators are kept for runs up to their
+    ``M`` (the longest run rounded up to 16 nodes, at most a grid row) and built again
+    for a longer run or other operators; a single-precision preconditioner solves with
+    single-precision operands (real or complex) on single-precision runs and filters in
+    complex64."""
+    from bem.frictional import preconditioner as P
+
+    system = _system(kernels)
+    pre = P.LinePreconditioner()
+    longest = int(np.bincount(_runs(system)).max())
+    pre.attach(system)
+    first = pre.inverses
+    assert first.M == min(-(-longest // 16) * 16, GRID.nodes_x) == 16
+    assert pre._row_inverses(system.ops, 16) is first
+    wider = pre._row_inverses(system.ops, 17)
+    assert wider is not first and wider.M == GRID.nodes_x == 23
+    assert pre._row_inverses(system.ops, 23) is wider
+    assert pre._row_inverses(_system(kernels).ops, 5) is not wider
+    seen = []
+    solve = P.RowInverses.solve
+    monkeypatch.setattr(P.RowInverses, "solve", lambda self, op, v, threads=False: seen.append(
+        (op.dtype, v.dtype)) or solve(self, op, v, threads))
+    box = system.box
+    row_filter = box.row_filter
+    monkeypatch.setattr(box, "row_filter", lambda power, dtype: seen.append(np.dtype(dtype)) or row_filter(power, dtype))
+    for dense_upto in (0, 96):
+        monkeypatch.setattr(P, "DENSE_UPTO", dense_upto)
+        seen.clear()
+        P.LinePreconditioner().attach(system)
+        system.precondition(np.ones(system.n))
+        real = np.complex64 if dense_upto == 0 else np.float32
+        assert seen == [np.dtype(np.complex64), (real, np.float32), (real, np.float32)], seen
 
 
 def test_line_preconditioner_with_global_unknowns(kernels):
