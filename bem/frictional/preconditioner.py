@@ -377,9 +377,10 @@ class LinePreconditioner:
 
         For a run with slip nodes ``P`` (``p``) and ``G_x, G_y`` the ``P x P`` blocks of its
         Toeplitz inverses, the rows of the slip law on ``z = B^{-1} e`` (``e`` a unit vector
-        of a slip row) are ``K = [[diag e_x G_x, diag e_y G_y], [-e_y + k e_y G_x, e_x - k e_x
-        G_y]]`` (row by row: diagonal factors on the left), and the solve is ``z - B^{-1}
-        E_P K^{-1} (R_P z - r_P)``, ``z = B^{-1} r``."""
+        of a slip row) are ``K = [[d E_x G_x, d E_y G_y], [-E_y + S E_y G_x, E_x - S E_x
+        G_y]]``, ``E_x, E_y, S`` the diagonal matrices of the slip nodes' ``e_x, e_y`` and
+        slopes and ``d`` = ``system.diag``; the solve is ``z - B^{-1} E_P K^{-1} (R_P z -
+        r_P)``, ``z = B^{-1} r`` (``docs/derivations.md`` section 5)."""
         B = system.B
         if B.size == 0:
             self._blocks = {}
