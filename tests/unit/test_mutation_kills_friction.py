@@ -365,9 +365,9 @@ def test_levinson_gives_the_first_and_last_columns_for_every_length(kernels):
             assert np.abs(last[n - 1, :n] - ref[:, -1]).max() < 1e-12 * scale
             assert not first[n - 1, n:].any() and not last[n - 1, n:].any()
     t = np.ones(2 * M - 1)  # every leading block of size 2 or more is singular
-    with pytest.raises(np.linalg.LinAlgError, match=r"the leading 2 x 2 block is singular"):
+    with pytest.raises(np.linalg.LinAlgError, match=r"^Levinson's recursion: the leading 2 x 2 block is singular$"):
         levinson(t, M)
-    with pytest.raises(np.linalg.LinAlgError, match="zero diagonal"):
+    with pytest.raises(np.linalg.LinAlgError, match=r"^Levinson's recursion: zero diagonal$"):
         levinson(np.r_[np.ones(M - 1), 0.0, np.ones(M - 1)], M)
 
 
@@ -389,9 +389,13 @@ def test_row_inverses_solve_the_runs_toeplitz_systems(kernels, threads, dense, M
     Ky, Kx = GRID.shape
     inv = RowInverses(ops, M, dense=dense)
     assert inv.M == M and inv.F == {16: 32, 13: 25}[M] and inv.spectra.shape == (3, 4, M, inv.F // 2 + 1)
-    assert (inv.matrices is not None) == dense
+    assert (inv.matrices is not None) == dense and (not dense or inv.matrices.shape == (3, M, M, M))
     assert RowInverses(ops, 99).M == Kx  # no run is longer than a grid row
     assert (RowInverses(ops, 16).matrices is not None) == (16 <= DENSE_UPTO)
+    from bem.frictional import preconditioner
+    with pytest.MonkeyPatch.context() as m:  # dense up to DENSE_UPTO nodes inclusive
+        m.setattr(preconditioner, "DENSE_UPTO", M)
+        assert RowInverses(ops, M).matrices is not None and RowInverses(ops, M + 1).matrices is None
     lens = np.array([1, 2, 7, M, 9, M])
     pos = np.array([[0, 0], [1, 0], [6, 2], [M - 1, 3], [4, 8], [0, 9]])
     rng = np.random.default_rng(8)
@@ -593,6 +597,21 @@ def test_line_preconditioner_keeps_its_row_inverses_while_they_fit(kernels, monk
         system.precondition(np.ones(system.n))
         real = np.complex64 if dense_upto == 0 else np.float32
         assert seen == [np.dtype(np.complex64), (real, np.float32), (real, np.float32)], seen
+
+
+def test_one_slip_node_is_one_woodbury_term(kernels):
+    """A single slip node in the whole contact (the others flipped to stick): one run with
+    a 2 x 2 Woodbury matrix, and the result is the exact inverse of the run blocks."""
+    from bem.frictional.preconditioner import LinePreconditioner
+
+    system = _system(kernels, seed=2)
+    one = _system(kernels, seed=2, flip=system.C[system.B[1:]])
+    assert one.B.size == 1
+    pre = LinePreconditioner(dtype=np.float64, filter_power=0)
+    pre.attach(one)
+    assert pre.factorised == 1
+    x = np.random.default_rng(8).normal(size=one.n)
+    assert np.abs(one.precondition(_line_blocks(one) @ x) - x).max() < 1e-10 * np.abs(x).max()
 
 
 def test_line_preconditioner_with_global_unknowns(kernels):
