@@ -301,7 +301,7 @@ class LinePreconditioner:
         starts = np.flatnonzero(np.r_[True, (np.diff(row) != 0) | (np.diff(col) != 1)])
         lens = np.diff(np.r_[starts, nC])
         inv = self._row_inverses(ops, int(lens.max()))
-        M, F, R = inv.M, inv.F, starts.size
+        M, R = inv.M, starts.size
         run = np.repeat(np.arange(R), lens)
         at = run * M + np.arange(nC) - starts[run]  # the contact nodes' places in the runs (R, M)
         place = np.zeros(R * M, bool)

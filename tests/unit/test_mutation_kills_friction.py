@@ -599,21 +599,6 @@ def test_line_preconditioner_keeps_its_row_inverses_while_they_fit(kernels, monk
         assert seen == [np.dtype(np.complex64), (real, np.float32), (real, np.float32)], seen
 
 
-def test_one_slip_node_is_one_woodbury_term(kernels):
-    """A single slip node in the whole contact (the others flipped to stick): one run with
-    a 2 x 2 Woodbury matrix, and the result is the exact inverse of the run blocks."""
-    from bem.frictional.preconditioner import LinePreconditioner
-
-    system = _system(kernels, seed=2)
-    one = _system(kernels, seed=2, flip=system.C[system.B[1:]])
-    assert one.B.size == 1
-    pre = LinePreconditioner(dtype=np.float64, filter_power=0)
-    pre.attach(one)
-    assert pre.factorised == 1
-    x = np.random.default_rng(8).normal(size=one.n)
-    assert np.abs(one.precondition(_line_blocks(one) @ x) - x).max() < 1e-10 * np.abs(x).max()
-
-
 def test_line_preconditioner_with_global_unknowns(kernels):
     """Load control and a free Omega add two unknowns: the force part of M r is still the
     run blocks' inverse applied to the force rows, whatever the global rows hold; the
@@ -635,19 +620,21 @@ def test_line_preconditioner_with_global_unknowns(kernels):
     np.testing.assert_array_equal(system.precondition(r2)[:3 * nC], got[:3 * nC])
 
 
-def test_an_all_stick_state_needs_no_woodbury_terms(kernels):
-    """With every contact node in stick the runs' blocks are Toeplitz: no columns are
-    computed, and the result is still the exact inverse of the run blocks."""
+@pytest.mark.parametrize("keep", [0, 1])
+def test_no_or_one_slip_node(kernels, keep):
+    """Every slip node but ``keep`` flipped to stick: with none the runs' blocks are
+    Toeplitz and no columns are computed; with one, one run has a 2 x 2 Woodbury matrix.
+    Either way the result is the exact inverse of the run blocks."""
     from bem.frictional.preconditioner import LinePreconditioner
 
-    system = _system(kernels, seed=1)
-    stuck = _system(kernels, seed=1, flip=system.C[system.B])
-    assert stuck.B.size == 0
+    system = _system(kernels, seed=2)
+    state = _system(kernels, seed=2, flip=system.C[system.B[keep:]])
+    assert state.B.size == keep
     pre = LinePreconditioner(dtype=np.float64, filter_power=0)
-    pre.attach(stuck)
-    assert pre.factorised == 0
-    x = np.random.default_rng(7).normal(size=stuck.n)
-    assert np.abs(stuck.precondition(_line_blocks(stuck) @ x) - x).max() < 1e-10 * np.abs(x).max()
+    pre.attach(state)
+    assert pre.factorised == keep
+    x = np.random.default_rng(7).normal(size=state.n)
+    assert np.abs(state.precondition(_line_blocks(state) @ x) - x).max() < 1e-10 * np.abs(x).max()
 
 
 # --------------------------------------------------------------------------------------
