@@ -119,8 +119,12 @@ class LinearSolves:
     def used_gmres(self) -> bool:
         return self.solver.used_gmres
 
+    def dense(self, system: SetSystem) -> bool:
+        """Whether ``system`` is solved by dense LU (exactly, whatever the reduction)."""
+        return system.n <= self.solver.dense_limit
+
     def __call__(self, system: SetSystem, guess=None, reduction: float | None = None):
-        if system.n > self.solver.dense_limit:
+        if not self.dense(system):
             self.lines.attach(system)
         x = self.solver(system, guess, rtol=reduction, what=f"{system.nC} contact nodes ({system.A.size} stick)",
                         hint="refine the grid less or raise friction.dense_limit")
@@ -165,8 +169,7 @@ def run_active_set(setup: RollingSetup, friction: Friction, start: SetState, sol
         # change by more than the solve's error), tight ones from a misfit of 1e-2 on:
         # only a tight solve can end the iteration; one right after a set change stays
         # inexact too while the misfit is above SETTLED (see there)
-        tight = misfit <= LOOSE_UNTIL and (not changes or misfit <= SETTLED or careful
-                                           or system.n <= solves.solver.dense_limit)
+        tight = misfit <= LOOSE_UNTIL and (not changes or misfit <= SETTLED or careful or solves.dense(system))
         N, Sx, Sy, d, om = solves(system, guess, None if tight else LOOSE_REDUCTION)
         v = _measure(setup, contact, stick, N, Sx, Sy, d, om)
         misfit, wx, wy = v.misfit, v.wx, v.wy
