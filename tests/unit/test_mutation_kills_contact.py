@@ -437,13 +437,14 @@ def test_gmres_that_fails_says_what_to_change(rolling_small, monkeypatch):
     """The flexible GMRES (as bem.linear calls it) replaced by one that reports failure
     after 7 iterations: the error names the set and what to change; the solver asks for
     the residual ``rtol |b|`` of the bordered system, with restart and maxiter 100 and 100
-    and the circulant preconditioner."""
+    and the circulant preconditioner, its Krylov vectors in double."""
     import bem.linear as linear
 
     calls = []
 
-    def failing(matvec, b, precondition=None, *, tol, restart, maxiter, callback=None, inner=None):
-        calls.append((tol / np.linalg.norm(b), restart, maxiter, precondition is not None, inner))
+    def failing(matvec, b, precondition=None, *, tol, restart, maxiter, callback=None, inner=None,
+                basis=np.float64):
+        calls.append((tol / np.linalg.norm(b), restart, maxiter, precondition is not None, inner, np.dtype(basis)))
         return np.zeros_like(b), False, 7
 
     monkeypatch.setattr(linear, "fgmres", failing)
@@ -455,4 +456,4 @@ def test_gmres_that_fails_says_what_to_change(rolling_small, monkeypatch):
     assert str(info.value) == (f"GMRES did not reduce the residual by 1.0e-09 on {m} contact nodes in 7 "
                                "iterations; refine less, or raise dense_limit if memory allows")
     assert len(calls) == 1
-    assert calls[0][0] == pytest.approx(1e-9, rel=1e-12) and calls[0][1:] == (100, 100, True, None)
+    assert calls[0][0] == pytest.approx(1e-9, rel=1e-12) and calls[0][1:] == (100, 100, True, None, np.float64)
