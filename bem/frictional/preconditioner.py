@@ -127,11 +127,12 @@ class RowInverses:
     ----------
     M, F : int
         The longest run and the transform length.
-    spectra : ndarray, shape ``(3, 4, M, F // 2 + 1)``
+    spectra : ndarray, shape ``(3, 4, M, F // 2 + 1)``, or None
         Per block (``ww``, ``uu``, ``vv``) and length ``n`` (index ``n - 1``) the spectra of
-        ``J y`` and ``Z J x`` (conjugated: correlations) and of ``x / x_0``, ``Z y / x_0``.
-    units : ndarray, shape ``(M, F // 2 + 1)``
-        The spectra of the unit vectors ``e_0 ... e_{M - 1}``.
+        ``J y`` and ``Z J x`` (conjugated: correlations) and of ``x / x_0``, ``Z y / x_0``;
+        ``None`` with ``matrices`` (not read then).
+    units : ndarray, shape ``(M, F // 2 + 1)``, or None
+        The spectra of the unit vectors ``e_0 ... e_{M - 1}``; ``None`` with ``matrices``.
     matrices : ndarray, shape ``(3, M, M, M)``, or None
         With ``dense`` (default: ``M <=`` :data:`DENSE_UPTO`) the inverses themselves, per
         block and length (``T_n^{-1}`` in the leading ``n x n`` of index ``n - 1``, 0
@@ -150,8 +151,8 @@ class RowInverses:
         src = i[:, None] - i[None, :]  # row n - 1, entry i: entry n - 1 - i of the columns
         rev = src >= 0
         src = np.where(rev, src, 0)
-        self.spectra = np.empty((3, 4, M, F // 2 + 1), complex)
         dense = M <= DENSE_UPTO if dense is None else dense
+        self.spectra = None if dense else np.empty((3, 4, M, F // 2 + 1), complex)
         self.matrices = np.empty((3, M, M, M)) if dense else None
         for b, name in enumerate(self.BLOCKS):
             t = (1.0 if name == "ww" else ax) * ops.tables[name][Ky - 1, Kx - M:Kx - 1 + M]
@@ -162,10 +163,11 @@ class RowInverses:
             ZJx[:, 1:] = np.where(rev[:, 1:], Jx[:, :-1], 0.0)
             Zy[:, 1:] = np.where(rev[:, 1:], y[:, :-1], 0.0)
             x0 = x[:, :1]
-            spec = sfft.rfft(np.stack([Jy, ZJx, x / x0, Zy / x0]), F)
-            spec[:2] = np.conj(spec[:2])
-            self.spectra[b] = spec
-            if dense:
+            if not dense:
+                spec = sfft.rfft(np.stack([Jy, ZJx, x / x0, Zy / x0]), F)
+                spec[:2] = np.conj(spec[:2])
+                self.spectra[b] = spec
+            else:
                 # the formula entry by entry: T^{-1}[i, j] = T^{-1}[i - 1, j - 1] + D[i, j],
                 # D = (x (J y)^T - (Z y) (Z J x)^T) / x_0 (0 beyond each length)
                 D = (x[:, :, None] * Jy[:, None, :] - Zy[:, :, None] * ZJx[:, None, :]) / x0[:, :, None]
@@ -175,7 +177,7 @@ class RowInverses:
                     G[:, r, 0] = D[:, r, 0]
                     G[:, r, 1:] = G[:, r - 1, :-1] + D[:, r, 1:]
                 G *= rev[:, :, None] & rev[:, None, :]  # the sums run on along the diagonals
-        self.units = np.exp(-2j * np.pi / F * np.outer(i, np.arange(F // 2 + 1)))
+        self.units = None if dense else np.exp(-2j * np.pi / F * np.outer(i, np.arange(F // 2 + 1)))
         self._cast: dict = {}
 
     def operand(self, b: int, lens: np.ndarray, dtype) -> np.ndarray:
