@@ -85,7 +85,6 @@ def fgmres(matvec, b: np.ndarray, precondition=None, *, tol: float, restart: int
         return x, True, 0
     V = np.empty((restart + 1, n), basis)
     Z = np.empty((restart, n), basis)
-    cast = np.dtype(basis) != np.float64
     H = np.zeros((restart + 1, restart))
     cs, sn = np.zeros(restart), np.zeros(restart)
     product = matvec if inner is None else inner
@@ -96,9 +95,7 @@ def fgmres(matvec, b: np.ndarray, precondition=None, *, tol: float, restart: int
         j = 0
         for j in range(restart):
             Z[j] = V[j] if precondition is None else precondition(V[j])
-            w = product(Z[j])
-            if cast:
-                w = w.astype(basis)
+            w = product(Z[j]).astype(basis, copy=False)
             norm0 = float(np.linalg.norm(w))
             h = V[:j + 1] @ w
             w -= h @ V[:j + 1]
