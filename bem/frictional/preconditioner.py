@@ -45,6 +45,7 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 import scipy.fft as sfft
 
+from ..friction import FrictionNotConverged
 from .system import SetSystem
 
 __all__ = ["LinePreconditioner", "RowInverses", "levinson", "FILTER_POWER", "THREAD_FROM"]
@@ -156,7 +157,10 @@ class RowInverses:
         self.matrices = np.empty((3, M, M, M)) if dense else None
         for b, name in enumerate(self.BLOCKS):
             t = (1.0 if name == "ww" else ax) * ops.tables[name][Ky - 1, Kx - M:Kx - 1 + M]
-            x, y = levinson(t, M)
+            try:
+                x, y = levinson(t, M)
+            except np.linalg.LinAlgError as exc:
+                raise np.linalg.LinAlgError(f"{exc} (block {name[-2:]} on a grid row)") from exc
             Jx = np.where(rev, np.take_along_axis(x, src, 1), 0.0)
             Jy = np.where(rev, np.take_along_axis(y, src, 1), 0.0)
             ZJx, Zy = np.zeros((M, M)), np.zeros((M, M))
@@ -291,9 +295,16 @@ class LinePreconditioner:
 
     def _row_inverses(self, ops, longest: int) -> RowInverses:
         """The :class:`RowInverses` of ``ops`` for runs of up to ``longest`` nodes (kept;
-        rebuilt for new operators or a longer run, to a multiple of 16 nodes)."""
+        rebuilt for new operators or a longer run, to a multiple of 16 nodes). Raises
+        :class:`~bem.friction.FrictionNotConverged` when a row block's leading block is
+        singular (Levinson's recursion needs every one regular)."""
         if self._ops is not ops or self.inverses.M < longest:
-            self.inverses = RowInverses(ops, -(-longest // 16) * 16)
+            try:
+                self.inverses = RowInverses(ops, -(-longest // 16) * 16)
+            except np.linalg.LinAlgError as exc:
+                raise FrictionNotConverged(
+                    f"the line preconditioner cannot be built on this grid: {exc}; solve by dense LU "
+                    "(raise friction.dense_limit above the system's unknowns) or change the grid spacing") from exc
             self._ops, self._blocks = ops, {}
         return self.inverses
 

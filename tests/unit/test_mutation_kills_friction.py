@@ -459,6 +459,28 @@ def test_line_preconditioner_is_the_inverse_of_its_run_blocks(kernels, monkeypat
     assert pre.factorised == _slip_runs(system) > 3
 
 
+@pytest.mark.parametrize("block", ["ww", "duu", "dvv"])
+def test_a_singular_row_block_ends_the_solve_with_what_to_change(kernels, block):
+    """A row block whose own diagonal vanishes (the layer's table edited at offset 0) has
+    no Levinson recursion: attaching the line preconditioner raises FrictionNotConverged
+    naming the block and the way out (dense LU, another spacing), not numpy's error."""
+    from bem.friction import FrictionNotConverged
+    from bem.frictional.preconditioner import LinePreconditioner
+
+    system = _system(kernels)
+    Ky, Kx = GRID.shape
+    table = system.ops.tables[block].copy()
+    table[Ky - 1, Kx - 1] = 0.0
+    system.ops.tables[block] = table
+    with pytest.raises(FrictionNotConverged) as info:
+        LinePreconditioner().attach(system)
+    assert str(info.value) == (
+        f"the line preconditioner cannot be built on this grid: Levinson's recursion: zero diagonal "
+        f"(block {block[-2:]} on a grid row); solve by dense LU (raise friction.dense_limit above the "
+        "system's unknowns) or change the grid spacing")
+    assert isinstance(info.value.__cause__, np.linalg.LinAlgError)
+
+
 def _two_threads_in_child(system, x, want, pipe):
     import bem.frictional.preconditioner as P
 
