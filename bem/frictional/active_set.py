@@ -26,7 +26,7 @@ from ..linear import LinearSolver
 from .preconditioner import LinePreconditioner
 from .system import RollingSetup, SetState, SetSystem
 
-__all__ = ["ActiveSetResult", "LinearSolves", "run_active_set"]
+__all__ = ["ActiveSetResult", "LinearSolves", "run_active_set", "tight_solve"]
 
 #: floor of the slip-law slope ``k``, in units of ``V / (mu N)``, while the slip misfit is
 #: 1 or more; it fades in proportion to the misfit below 1. Measured (``benchmarks/
@@ -65,6 +65,15 @@ SINGLE_FROM = LOOSE_REDUCTION
 #: 218 -> 190 (1.6e-12), 121 x 121 272 -> 233 (1.8e-11), section 11 257 x 257 455 -> 379
 #: (2.0e-11). With 1e-14: 183, 223, 362 iterations but 2.2e-10 at 257 x 257
 RESIDUAL_FLOOR = 1e-15
+
+
+def tight_solve(misfit: float, changes: bool, careful: bool, dense: bool) -> bool:
+    """Whether the next solve is tight (GMRES to 1e-10) rather than inexact
+    (:data:`LOOSE_REDUCTION`), from the slip ``misfit`` (-) after the last solve, whether
+    its sets then ``changes``, one-node updates (``careful``) and a ``dense`` LU solve: from
+    a misfit of :data:`LOOSE_UNTIL` on, but right after a set change only from
+    :data:`SETTLED` on, unless in one-node updates or by dense LU."""
+    return misfit <= LOOSE_UNTIL and (not changes or misfit <= SETTLED or careful or dense)
 
 
 @dataclass(frozen=True)
@@ -166,10 +175,8 @@ def run_active_set(setup: RollingSetup, friction: Friction, start: SetState, sol
         guess = None if it == 1 else system.unknowns(N, Sx, Sy, d, om)
         lin0 = solves.iterations
         # inexact solves while the slip law is far from settled (the sets and directions
-        # change by more than the solve's error), tight ones from a misfit of 1e-2 on:
-        # only a tight solve can end the iteration; one right after a set change stays
-        # inexact too while the misfit is above SETTLED (see there)
-        tight = misfit <= LOOSE_UNTIL and (not changes or misfit <= SETTLED or careful or solves.dense(system))
+        # change by more than the solve's error); only a tight solve can end the iteration
+        tight = tight_solve(misfit, changes, careful, solves.dense(system))
         N, Sx, Sy, d, om = solves(system, guess, None if tight else LOOSE_REDUCTION)
         v = _measure(setup, contact, stick, N, Sx, Sy, d, om)
         misfit, wx, wy = v.misfit, v.wx, v.wy

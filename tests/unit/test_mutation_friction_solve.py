@@ -1124,3 +1124,26 @@ def test_coarse_level_settles_without_the_tight_solve(big_kernels, monkeypatch):
     assert chist == converged[:len(chist)] and len(chist) < len(converged)
     assert np.array_equal(full.stick, settled.stick) and np.array_equal(full.contact, settled.contact)
     np.testing.assert_allclose(full.force_x, settled.force_x, rtol=0, atol=1e-9 * full.force.max())
+
+
+@pytest.mark.parametrize("misfit, changes, careful, dense, tight", [
+    (np.inf, True, False, False, False),  # the first solve
+    (1e-2, False, False, False, True),  # the sets repeat: tight from 1e-2 on
+    (1.01e-2, False, False, False, False),
+    (1e-2, False, True, True, True),
+    (1e-5, True, False, False, True),  # right after a set change: tight from 1e-5 on
+    (1.01e-5, True, False, False, False),
+    (1e-4, True, False, False, False),
+    (3.3e-3, True, False, False, False),  # 513 x 513's four nodes stuck at 3.3e-3 (SETTLED's measurement)
+    (3.3e-3, True, True, False, True),  # one-node updates: an accepted cycle keeps this solve
+    (3.3e-3, True, False, True, True),  # dense LU is exact whatever the reduction
+    (1.01e-2, True, True, True, False),  # above 1e-2 never
+])
+def test_which_solves_are_tight(misfit, changes, careful, dense, tight):
+    """The rule the replay checks on the runs it meets, at its thresholds: ``LOOSE_UNTIL`` =
+    1e-2 and ``SETTLED`` = 1e-5, both inclusive, and its three ways around ``SETTLED``
+    (no set change, one-node updates, dense LU); no replayed run has a misfit between the
+    two right after a set change, where ``SETTLED`` alone decides."""
+    from bem.frictional.active_set import tight_solve
+
+    assert tight_solve(misfit, changes, careful, dense) is tight
