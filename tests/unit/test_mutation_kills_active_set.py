@@ -95,6 +95,9 @@ class ScriptedLayer:
     def fields(self, N, Sx, Sy):
         return np.stack([f.reshape(SHAPE) for f in self._fields])
 
+    def dense(self, system):
+        return False  # solved "iteratively": tight only by the misfit and the sets (tight_solve)
+
     def run(self, monkeypatch, start, friction=None, lines=None):
         monkeypatch.setattr(act, "SetSystem", self.system)
         return act.run_active_set(self.setup, friction or Friction(MU, "omega", omega=OMEGA), start, self,
