@@ -64,10 +64,11 @@ def fgmres(matvec, b: np.ndarray, precondition=None, *, tol: float, restart: int
         convergence test reads the true residual and a cycle that fell short of ``tol``
         by the inner product's error restarts from it.
     basis : dtype
-        Storage and Gram-Schmidt of the Krylov vectors ``v_j`` and ``z_j`` (``float32``:
-        half the memory traffic of the orthogonalisation, the Hessenberg matrix and the
-        step still in double; for solves whose products are single precision anyway,
-        ``inner``, whose cycles then gain about 1e-7 of ``|b|`` at most).
+        Storage and Gram-Schmidt of the Krylov vectors ``v_j`` and ``z_j``. ``float32``
+        halves the memory traffic of the orthogonalisation (the Hessenberg matrix and the
+        step stay in double); a cycle then reduces the residual by about 1e-7 at most, as
+        with a single-precision ``inner`` product, and restarts from the residual
+        recomputed by ``matvec``: for solves whose products are single precision anyway.
 
     Returns
     -------
@@ -169,8 +170,9 @@ class LinearSolver:
         correction whose residual is already near rounding is not reduced ten more orders.
     single_from : float
         A call whose ``rtol`` is at least this (-) runs its GMRES cycles on the system's
-        ``matvec_single`` when it has one (a product in single precision), the residual
-        at each cycle's end on ``matvec``; ``inf``: never.
+        ``matvec_single`` when it has one (a product in single precision), on Krylov
+        vectors kept in single precision (:func:`fgmres`'s ``basis``), the residual at each
+        cycle's end on ``matvec``; ``inf``: never.
     what : str
         Names the system in error messages (``"3 x 1977 unknowns of the stick/slip set"``).
 
