@@ -1143,8 +1143,9 @@ def test_which_solves_are_tight(misfit, changes, careful, dense, tight):
     """The rule the replay checks on the runs it meets, at its thresholds: ``LOOSE_UNTIL`` =
     1e-2 and ``SETTLED`` = 1e-5, both inclusive, and its three ways around ``SETTLED``
     (no set change, one-node updates, dense LU). The replayed runs do not pin ``SETTLED``'s
-    value: their inexact solves right after a set change follow misfits of 4e-4 to 1e-2,
-    all by dense LU but one (5.2e-3, GMRES), none by GMRES between 1e-5 and 1e-3."""
+    value: of their steps right after a set change at a misfit between 1e-5 and 1e-2 (4e-4
+    to 9.8e-3), seven are dense LU (tight whatever the misfit) and one is GMRES (5.2e-3,
+    held inexact); none is GMRES between 1e-5 and 1e-3."""
     from bem.frictional.active_set import tight_solve
 
     assert tight_solve(misfit, changes, careful, dense) is tight
