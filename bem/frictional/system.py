@@ -178,10 +178,19 @@ class SetSystem:
         out = np.empty((self.n, X.shape[1]))
         out[:3 * nC] = force_rows(self.stick, self.dir_x, self.dir_y, self.slope, self.setup.mu, self.diag,
                                   gap, Dx, Dy, X[:nC], X[nC:2 * nC], X[2 * nC:3 * nC])
+        out[3 * nC:] = self.global_rows(X[:3 * nC])
+        return out
+
+    def global_rows(self, X):
+        """The rows of the global unknowns (the load's ``diag sum N``, the loading mode's
+        ``c_N . N + c_x . S_x``; as many as there are global unknowns) on force unknowns
+        ``X`` (``3 nC x k``): they read no displacement."""
+        nC = self.nC
+        out = np.empty((self.n - 3 * nC, X.shape[1]))
         if self.free_d:
-            out[self.iD] = self.diag * X[:nC].sum(0)
+            out[self.iD - 3 * nC] = self.diag * X[:nC].sum(0)
         if self.free_om:
-            out[self.iO] = self.cN @ X[:nC] + self.cx @ X[nC:2 * nC]
+            out[self.iO - 3 * nC] = self.cN @ X[:nC] + self.cx @ X[nC:2 * nC]
         return out
 
     def blocks(self, rows: np.ndarray, cols: np.ndarray):

@@ -626,24 +626,51 @@ def test_line_preconditioner_keeps_its_row_inverses_while_they_fit(kernels, monk
 
 
 def test_line_preconditioner_with_global_unknowns(kernels):
-    """Load control and a free Omega add two unknowns: the force part of M r is still the
-    run blocks' inverse applied to the force rows, whatever the global rows hold; the
-    global rows are passed on (d) and scaled by the Omega column's coefficient."""
+    """Load control and a free Omega add two unknowns (``d`` in every gap row, ``Omega`` in
+    the ``x`` stick rows and the slip rows across ``e``; the rows of the load and the loading
+    mode): M r is the exact inverse of the run blocks bordered by those columns and rows
+    (block elimination with the Schur complement of the two), checked on the bordered
+    matrix assembled here from the system's own rows."""
+    from bem.frictional.preconditioner import LinePreconditioner
+
+    system = _system(kernels, load=20.0, indentation=None, omega=None)
+    nC, n = system.nC, system.n
+    assert n == 3 * nC + 2
+    unit = np.zeros((n, 2))
+    unit[3 * nC:] = np.eye(2)
+    F = system.rows(np.zeros((nC, 2)), np.zeros((nC, 2)), np.zeros((nC, 2)), unit)[:3 * nC]
+    assert np.count_nonzero(F[:nC, 0]) == nC and not F[nC:, 0].any()  # d: every gap row, only them
+    assert not F[:nC, 1].any() and np.count_nonzero(F[nC:, 1]) > 0  # Omega: tangential rows only
+    G = system.global_rows(np.eye(3 * nC))
+    bordered = np.zeros((n, n))
+    bordered[:3 * nC, :3 * nC] = _line_blocks(system)
+    bordered[:3 * nC, 3 * nC:] = F
+    bordered[3 * nC:, :3 * nC] = G
+    r = np.random.default_rng(4).normal(size=n)
+    LinePreconditioner(dtype=np.float64, filter_power=0).attach(system)
+    got = system.precondition(r)
+    assert got.shape == (n,) and np.isfinite(got).all()
+    np.testing.assert_allclose(bordered @ got, r, rtol=0, atol=1e-9 * np.abs(r).max())
+    # the global rows' residuals reach the forces (the former preconditioner passed them on)
+    r2 = r.copy()
+    r2[3 * nC:] *= 7.0
+    assert not np.allclose(system.precondition(r2)[:3 * nC], got[:3 * nC])
+
+
+def test_line_preconditioner_singular_complement_scales_the_globals(kernels, monkeypatch):
+    """When the Schur complement of d and Omega is singular (here: global rows that read
+    nothing), the forces get the lines alone and the global rows are passed on, Omega's
+    scaled by the inverse of its stick-row coefficient ``1 / a_x``."""
     from bem.frictional.preconditioner import LinePreconditioner
 
     system = _system(kernels, load=20.0, indentation=None, omega=None)
     nC = system.nC
-    assert system.n == 3 * nC + 2
-    B = _line_blocks(system)
-    r = np.random.default_rng(4).normal(size=system.n)
+    monkeypatch.setattr(system, "global_rows", lambda X: np.zeros((2, X.shape[1])))
+    r = np.random.default_rng(5).normal(size=system.n)
     LinePreconditioner(dtype=np.float64, filter_power=0).attach(system)
     got = system.precondition(r)
-    assert got.shape == (system.n,) and np.isfinite(got).all()
-    np.testing.assert_allclose(B @ got[:3 * nC], r[:3 * nC], rtol=0, atol=1e-10 * np.abs(r).max())
+    np.testing.assert_allclose(_line_blocks(system) @ got[:3 * nC], r[:3 * nC], rtol=0, atol=1e-10 * np.abs(r).max())
     assert got[system.iD] == r[system.iD] and got[system.iO] == r[system.iO] / system.ax
-    r2 = r.copy()
-    r2[3 * nC:] *= 7.0
-    np.testing.assert_array_equal(system.precondition(r2)[:3 * nC], got[:3 * nC])
 
 
 @pytest.mark.parametrize("keep", [0, 1])
