@@ -46,6 +46,7 @@ import numpy as np
 import scipy.fft as sfft
 
 from ..friction import FrictionNotConverged
+from ..linear import bordered
 from .system import SetSystem
 
 __all__ = ["LinePreconditioner", "RowInverses", "levinson", "FILTER_POWER", "THREAD_FROM"]
@@ -258,44 +259,28 @@ os.register_at_fork(after_in_child=_forget_pool)
 
 
 def _bordered(system: SetSystem, forces):
-    """The preconditioner of the whole bordered system from ``forces``, the
-    preconditioner of its force rows, and the exact Schur complement of the global
-    unknowns (``d`` under load control, ``Omega`` when free: one or two columns ``F`` of
-    the forces' rows, rows ``G`` of the load and the loading mode, no block of their own):
-    ``y = M r_f``, ``x_g = S^{-1} (r_g - G y)``, ``x_f = y - (M F) x_g`` with ``S = -G M F``
-    (two preconditioner applications at the attach); a singular ``S`` leaves the global
-    unknowns scaled alone, the former treatment. With that treatment the preconditioned
-    operator kept a real pair of outliers at about -113 and 116 whose vectors lay 88 % on
-    ``d`` and ``Omega``, and a complex pair at ``1.6 +- 28.6 i`` (normal forces on the
-    contact's edge), both gone with the elimination (section 11 at 129 x 129, the
-    converged state); fine-grid GMRES iterations 155 -> 126 at 257 x 257."""
+    """The preconditioner of the whole system from ``forces``, that of its force rows:
+    ``d`` (load control) and ``Omega`` (when free) eliminated by their exact Schur
+    complement (:func:`bem.linear.bordered`; their columns ``F`` in the force rows from
+    :meth:`SetSystem.rows` with no forces, their rows from :meth:`SetSystem.global_rows`);
+    when that complement is singular, the former treatment: the global rows passed on,
+    ``Omega``'s scaled by the inverse of its stick-row coefficient ``1 / a_x``.
+
+    With the former treatment the preconditioned operator kept a real pair of outliers at
+    about -113 and 116 whose vectors lay 88 % on ``d`` and ``Omega`` and a complex pair at
+    ``1.6 +- 28.6 i`` (normal forces on the contact's edge), both gone with the
+    elimination (section 11 at 129 x 129, the converged state); fine-grid GMRES
+    iterations 155 -> 126 at 257 x 257 (``BENCHMARKS.md``, twelfth pass)."""
     nC, n, k = system.nC, system.n, system.n - 3 * system.nC
     unit = np.zeros((n, k))
     unit[3 * nC:] = np.eye(k)
-    F = system.rows(np.zeros((nC, k)), np.zeros((nC, k)), np.zeros((nC, k)), unit)[:3 * nC]
-    MF = np.stack([forces(F[:, j]) for j in range(k)], 1)
-
-    schur = -system.global_rows(MF)
-    if not np.isfinite(schur).all() or np.linalg.cond(schur) > 1e12:
-        # no elimination through a singular complement: the global rows alone, scaled
-        # (d as it stands, Omega by the inverse of its stick-row coefficient)
-        scale = np.where(np.arange(3 * nC, n) == system.iO, 1.0 / system.ax, 1.0) if system.free_om else 1.0
-
-        def passed_on(r):
-            return np.concatenate([forces(r), r[3 * nC:] * scale])
-
-        return passed_on
-    S_inv = np.linalg.inv(schur)
-
-    def precondition(r):
-        y = forces(r)
-        xg = S_inv @ (r[3 * nC:] - system.global_rows(y[:, None])[:, 0])
-        out = np.empty(n)
-        out[:3 * nC] = y - MF @ xg
-        out[3 * nC:] = xg
-        return out
-
-    return precondition
+    zero = np.zeros((nC, k))
+    F = system.rows(zero, zero, zero, unit)[:3 * nC]
+    eliminated = bordered(forces, F, system.global_rows)
+    if eliminated is not None:
+        return eliminated
+    scale = np.where(np.arange(3 * nC, n) == system.iO, 1.0 / system.ax, 1.0) if system.free_om else 1.0
+    return lambda r: np.concatenate([forces(r), r[3 * nC:] * scale])
 
 
 class LinePreconditioner:

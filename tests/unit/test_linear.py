@@ -316,3 +316,24 @@ def test_loose_calls_take_the_systems_single_precision_product():
     assert np.linalg.norm(b - A @ x) <= 1e-3 * np.linalg.norm(b)
     LinearSolver(0, 1e-12)(Single(A, b), rtol=1e-3)  # by default never
     assert len(calls) == used
+
+
+def test_bordered_preconditioner_is_the_block_inverse_and_declines_a_singular_complement():
+    """With the exact inverse of ``A`` for the forces, :func:`bordered` is the exact inverse
+    of ``[[A, F], [G, 0]]`` (two global unknowns); global rows that cannot see the forces'
+    answer (``G M F`` singular) give ``None``."""
+    from bem.linear import bordered
+
+    rng = np.random.default_rng(3)
+    m, k = 9, 2
+    A = rng.normal(size=(m, m)) + 4 * np.eye(m)
+    F, G = rng.normal(size=(m, k)), rng.normal(size=(k, m))
+    inv = np.linalg.inv(A)
+    pre = bordered(lambda r: inv @ r, F, lambda x: G @ x)
+    K = np.block([[A, F], [G, np.zeros((k, k))]])
+    r = rng.normal(size=m + k)
+    np.testing.assert_allclose(K @ pre(r), r, rtol=0, atol=1e-12 * np.abs(r).max())
+    np.testing.assert_allclose(pre(r), np.linalg.solve(K, r), rtol=1e-10)
+    assert bordered(lambda r: inv @ r, F, lambda x: np.zeros((k, x.shape[1]))) is None
+    G_rank1 = np.vstack([G[0], 2 * G[0]])
+    assert bordered(lambda r: inv @ r, F, lambda x: G_rank1 @ x) is None

@@ -115,8 +115,9 @@ def test_displacement_control_fields(rolling_small):
 def test_bordered_system_is_the_stated_matrix(rolling_small):
     """Load control: [[C_AA, -1], [c 1^T, 0]] with c = C_ii (the self-compliance, a
     scale for the load row) and right side [-s_A, c P]; displacement control: C_AA and
-    d - s_A. The FFT product equals the dense matrix, and the preconditioner is the
-    identity on the border."""
+    d - s_A. The FFT product equals the dense matrix, and under load control the
+    preconditioner is the exact inverse of the force preconditioner's own inverse
+    bordered the same way (d eliminated by its Schur complement)."""
     op = rolling_small
     idx = np.array([0, 5, 100, 220, 221, 440])
     s_A = np.linspace(1e-6, 3e-6, idx.size)
@@ -132,7 +133,10 @@ def test_bordered_system_is_the_stated_matrix(rolling_small):
     np.testing.assert_allclose(sys_p.matvec(v), M @ v, rtol=1e-12, atol=1e-12 * np.abs(M @ v).max())
     assert sys_p.split(v) == (pytest.approx(v[:6]), v[6]) and isinstance(sys_p.split(v)[1], float)
     pre = sys_p.precondition(v)
-    assert pre.shape == (7,) and pre[6] == v[6]
+    P = np.column_stack([sys_p._forces(e) for e in np.eye(6)])  # the circulant inverse on the set
+    bordered = np.block([[np.linalg.inv(P), -np.ones((6, 1))], [np.full((1, 6), c), np.zeros((1, 1))]])
+    assert pre.shape == (7,)
+    np.testing.assert_allclose(bordered @ pre, v, rtol=0, atol=1e-10 * np.abs(v).max())
     sys_d = NormalSystem(op, idx, s_A, None, 4e-6)
     assert (sys_d.m, sys_d.n) == (6, 6)
     np.testing.assert_allclose(sys_d.dense(), K, rtol=1e-15)
