@@ -33,7 +33,7 @@ import numpy as np
 from scipy.ndimage import binary_dilation
 
 from .grid import Grid
-from .linear import LinearSolver, bordered
+from .linear import LinearSolver, bordered, eliminate
 from .operator import ComplianceOperator
 
 __all__ = [
@@ -238,7 +238,12 @@ class NormalSystem:
             forces = self._forces
             if self.bordered:
                 diag = self.diag
-                forces = bordered(forces, -np.ones((self.m, 1)), lambda x: diag * x.sum(0, keepdims=True)) or (
+
+                def load_row(x):
+                    return diag * x.sum(0, keepdims=True)
+
+                parts = eliminate(forces, -np.ones((self.m, 1)), load_row)
+                forces = bordered(forces, load_row, parts) if parts is not None else (
                     lambda v: np.concatenate([self._forces(v[:self.m]), v[self.m:]]))
             self._pre = forces
         return self._pre(v)

@@ -15,14 +15,14 @@ from typing import Protocol
 
 import numpy as np
 
-__all__ = ["LinearSystem", "LinearSolver", "fgmres", "bordered", "RANK_TOL", "SCHUR_COND"]
+__all__ = ["LinearSystem", "LinearSolver", "fgmres", "bordered", "eliminate", "RANK_TOL", "SCHUR_COND"]
 
 #: :func:`fgmres` takes a least-squares step instead of the triangular solve when a
 #: diagonal entry of its Hessenberg factor falls below this fraction of the largest (a
 #: product ``A z_j`` in the span of the earlier ones, to rounding): on ``diag(1, 2, 0)``
 #: the triangular solve gave a step of 3e14 (a diagonal entry of 1e-16, not exactly 0)
 RANK_TOL = 1e-13
-#: :func:`bordered` declines a Schur complement whose condition number exceeds this
+#: :func:`eliminate` declines a Schur complement whose condition number exceeds this
 SCHUR_COND = 1e12
 
 
@@ -147,28 +147,36 @@ def fgmres(matvec, b: np.ndarray, precondition=None, *, tol: float, restart: int
     return x, False, its
 
 
-def bordered(forces, F: np.ndarray, rows):
+def eliminate(forces, F: np.ndarray, rows):
+    """What :func:`bordered` needs of the global unknowns: ``(M F, S^{-1})`` with ``S = -G M
+    F`` (``k`` applications of ``forces``), or ``None`` when ``S`` is singular (condition
+    number above :data:`SCHUR_COND`, or not finite): the caller keeps its own treatment
+    then. ``F`` ``(m, k)`` holds the global unknowns' columns in the force rows, ``rows(x)``
+    the global rows ``G x`` on force vectors ``x`` ``(m, j)`` as ``(k, j)``."""
+    MF = np.stack([forces(F[:, j]) for j in range(F.shape[1])], 1)
+    S = -rows(MF)
+    if not np.isfinite(S).all() or np.linalg.cond(S) > SCHUR_COND:
+        return None
+    return MF, np.linalg.inv(S)
+
+
+def bordered(forces, rows, parts):
     """A preconditioner of the bordered system ``[[A, F], [G, 0]]`` (``m`` force unknowns,
     ``k`` global ones such as the indentation under load control) from ``forces``, an
-    approximate inverse of ``A`` (``r_f`` of size ``m`` to ``m``), by block elimination
-    with the exact ``k x k`` Schur complement of the global unknowns:
+    approximate inverse ``M`` of ``A`` (``r_f`` of size ``m`` to ``m``), by block
+    elimination with the Schur complement of the global unknowns (``parts`` from
+    :func:`eliminate`):
 
         ``y = M r_f``, ``x_g = S^{-1} (r_g - G y)``, ``x_f = y - (M F) x_g``,
         ``S = -G M F``
 
-    (``M F``: ``k`` applications of ``forces``, once). ``F`` ``(m, k)`` holds the global
-    unknowns' columns in the force rows, ``rows(x)`` the global rows ``G x`` on force
-    vectors ``x`` ``(m, j)`` as ``(k, j)``. Passing the global rows on unchanged instead
-    (the former treatment of both contact solvers) leaves outliers in the preconditioned
-    spectrum whose vectors lie on the global unknowns (``BENCHMARKS.md``, issue 11's
-    twelfth pass). Returns ``None`` when ``S`` is singular (condition number above
-    :data:`SCHUR_COND`, or not finite): the caller keeps its own treatment then."""
-    m, k = F.shape
-    MF = np.stack([forces(F[:, j]) for j in range(k)], 1)
-    S = -rows(MF)
-    if not np.isfinite(S).all() or np.linalg.cond(S) > SCHUR_COND:
-        return None
-    S_inv = np.linalg.inv(S)
+    exact for the bordered matrix when ``M = A^{-1}``; ``parts`` of an earlier ``M`` give an
+    inexact but fixed elimination (a flexible GMRES takes either). Passing the global rows
+    on unchanged instead (the former treatment of both contact solvers) leaves outliers in
+    the preconditioned spectrum whose vectors lie on the global unknowns
+    (``BENCHMARKS.md``, issue 11's twelfth pass)."""
+    MF, S_inv = parts
+    m, k = MF.shape
 
     def precondition(r):
         y = forces(r[:m])

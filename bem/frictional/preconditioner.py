@@ -46,7 +46,7 @@ import numpy as np
 import scipy.fft as sfft
 
 from ..friction import FrictionNotConverged
-from ..linear import bordered
+from ..linear import bordered, eliminate
 from .system import SetSystem
 
 __all__ = ["LinePreconditioner", "RowInverses", "levinson", "FILTER_POWER", "THREAD_FROM"]
@@ -258,13 +258,15 @@ _POOL: ThreadPoolExecutor | None = None
 os.register_at_fork(after_in_child=_forget_pool)
 
 
-def _bordered(system: SetSystem, forces):
+def _bordered(system: SetSystem, forces, kept=None):
     """The preconditioner of the whole system from ``forces``, that of its force rows:
-    ``d`` (load control) and ``Omega`` (when free) eliminated by their exact Schur
-    complement (:func:`bem.linear.bordered`; their columns ``F`` in the force rows from
+    ``d`` (load control) and ``Omega`` (when free) eliminated by their Schur complement
+    (:func:`bem.linear.bordered`; their columns ``F`` in the force rows from
     :meth:`SetSystem.rows` with no forces, their rows from :meth:`SetSystem.global_rows`);
     when that complement is singular, the former treatment: the global rows passed on,
-    ``Omega``'s scaled by the inverse of its stick-row coefficient ``1 / a_x``.
+    ``Omega``'s scaled by the inverse of its stick-row coefficient ``1 / a_x``. ``kept``:
+    the complement's parts from an earlier state with the same sets, reused (returns the
+    preconditioner and the parts it used).
 
     With the former treatment the preconditioned operator kept a real pair of outliers at
     about -113 and 116 whose vectors lay 88 % on ``d`` and ``Omega`` and a complex pair at
@@ -272,15 +274,17 @@ def _bordered(system: SetSystem, forces):
     elimination (section 11 at 129 x 129, the converged state); fine-grid GMRES
     iterations 155 -> 126 at 257 x 257 (``BENCHMARKS.md``, twelfth pass)."""
     nC, n, k = system.nC, system.n, system.n - 3 * system.nC
-    unit = np.zeros((n, k))
-    unit[3 * nC:] = np.eye(k)
-    zero = np.zeros((nC, k))
-    F = system.rows(zero, zero, zero, unit)[:3 * nC]
-    eliminated = bordered(forces, F, system.global_rows)
-    if eliminated is not None:
-        return eliminated
+    parts = kept
+    if parts is None:
+        unit = np.zeros((n, k))
+        unit[3 * nC:] = np.eye(k)
+        zero = np.zeros((nC, k))
+        F = system.rows(zero, zero, zero, unit)[:3 * nC]
+        parts = eliminate(forces, F, system.global_rows)
+    if parts is not None:
+        return bordered(forces, system.global_rows, parts), parts
     scale = np.where(np.arange(3 * nC, n) == system.iO, 1.0 / system.ax, 1.0) if system.free_om else 1.0
-    return lambda r: np.concatenate([forces(r), r[3 * nC:] * scale])
+    return (lambda r: np.concatenate([forces(r), r[3 * nC:] * scale])), None
 
 
 class LinePreconditioner:
@@ -317,6 +321,7 @@ class LinePreconditioner:
         self.inverses: RowInverses | None = None
         self._ops = None
         self._blocks: dict = {}
+        self._schur: tuple = (None, None)
         self.factorised = 0
 
     def _row_inverses(self, ops, longest: int) -> RowInverses:
@@ -331,7 +336,7 @@ class LinePreconditioner:
                 raise FrictionNotConverged(
                     f"the line preconditioner cannot be built on this grid: {exc}; solve by dense LU "
                     "(raise friction.dense_limit above the system's unknowns) or change the grid spacing") from exc
-            self._ops, self._blocks = ops, {}
+            self._ops, self._blocks, self._schur = ops, {}, (None, None)
         return self.inverses
 
     def attach(self, system: SetSystem) -> None:
@@ -401,7 +406,16 @@ class LinePreconditioner:
                 out = box.filter_on(system.in_box, out, spectra)
             return out.reshape(-1)
 
-        system.precondition = forces if system.n == 3 * nC else _bordered(system, forces)
+        if system.n == 3 * nC:
+            system.precondition = forces
+        else:
+            # the Schur complement's parts are kept while the sets repeat (the directions
+            # and slopes then move little): measured, the same GMRES iterations on the
+            # issue case and section 11 up to 257 x 257, two applications saved an attach
+            key = (system.C.tobytes(), system.stick.tobytes(), system.free_d, system.free_om, system.setup.mu)
+            kept = self._schur[1] if self._schur[0] == key else None
+            system.precondition, parts = _bordered(system, forces, kept)
+            self._schur = (key, parts)
 
     def _woodbury(self, system: SetSystem, inv: RowInverses, starts, lens, run) -> list:
         """The runs' Woodbury terms, grouped by slip count ``p`` (padded to a multiple of 8,

@@ -319,21 +319,27 @@ def test_loose_calls_take_the_systems_single_precision_product():
 
 
 def test_bordered_preconditioner_is_the_block_inverse_and_declines_a_singular_complement():
-    """With the exact inverse of ``A`` for the forces, :func:`bordered` is the exact inverse
-    of ``[[A, F], [G, 0]]`` (two global unknowns); global rows that cannot see the forces'
-    answer (``G M F`` singular) give ``None``."""
-    from bem.linear import bordered
+    """With the exact inverse of ``A`` for the forces, :func:`bordered` on
+    :func:`eliminate`'s parts is the exact inverse of ``[[A, F], [G, 0]]`` (two global
+    unknowns); global rows that cannot see the forces' answer (``G M F`` singular) give
+    ``None``; parts of another ``M`` still give a fixed linear map, not the inverse."""
+    from bem.linear import bordered, eliminate
 
     rng = np.random.default_rng(3)
     m, k = 9, 2
     A = rng.normal(size=(m, m)) + 4 * np.eye(m)
     F, G = rng.normal(size=(m, k)), rng.normal(size=(k, m))
     inv = np.linalg.inv(A)
-    pre = bordered(lambda r: inv @ r, F, lambda x: G @ x)
+    parts = eliminate(lambda r: inv @ r, F, lambda x: G @ x)
+    pre = bordered(lambda r: inv @ r, lambda x: G @ x, parts)
     K = np.block([[A, F], [G, np.zeros((k, k))]])
     r = rng.normal(size=m + k)
     np.testing.assert_allclose(K @ pre(r), r, rtol=0, atol=1e-12 * np.abs(r).max())
     np.testing.assert_allclose(pre(r), np.linalg.solve(K, r), rtol=1e-10)
-    assert bordered(lambda r: inv @ r, F, lambda x: np.zeros((k, x.shape[1]))) is None
+    assert eliminate(lambda r: inv @ r, F, lambda x: np.zeros((k, x.shape[1]))) is None
     G_rank1 = np.vstack([G[0], 2 * G[0]])
-    assert bordered(lambda r: inv @ r, F, lambda x: G_rank1 @ x) is None
+    assert eliminate(lambda r: inv @ r, F, lambda x: G_rank1 @ x) is None
+    other = eliminate(lambda r: 0.9 * inv @ r, F, lambda x: G @ x)
+    stale = bordered(lambda r: inv @ r, lambda x: G @ x, other)
+    assert not np.allclose(K @ stale(r), r)
+    np.testing.assert_allclose(stale(2 * r + r[::-1]), 2 * stale(r) + stale(r[::-1]), rtol=1e-12)

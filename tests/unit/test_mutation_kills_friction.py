@@ -657,6 +657,44 @@ def test_line_preconditioner_with_global_unknowns(kernels):
     assert not np.allclose(system.precondition(r2)[:3 * nC], got[:3 * nC])
 
 
+def test_line_preconditioner_keeps_the_schur_parts_while_the_sets_repeat(kernels, monkeypatch):
+    """The complement of d and Omega is computed once per contact and stick set: a second
+    attach with the same sets and turned slip directions reuses it (no new
+    ``eliminate``; the result is then not the new blocks' exact bordered inverse, but
+    the same linear map as the first attach's elimination applied with the new lines);
+    a flipped node, another ``mu`` or new operators compute it again."""
+    from dataclasses import replace
+
+    from bem.frictional import SetState, SetSystem
+    from bem.frictional import preconditioner as P
+
+    calls = []
+    eliminate = P.eliminate
+    monkeypatch.setattr(P, "eliminate", lambda *a: calls.append(1) or eliminate(*a))
+    pre = P.LinePreconditioner(dtype=np.float64, filter_power=0)
+    first = _system(kernels, load=20.0, indentation=None, omega=None)
+    pre.attach(first)
+    turned = _system(kernels, load=20.0, indentation=None, omega=None, turn=0.4, ops=first.ops)
+    assert np.array_equal(turned.C, first.C) and np.array_equal(turned.stick, first.stick)
+    pre.attach(turned)
+    assert len(calls) == 1
+    flipped = _system(kernels, load=20.0, indentation=None, omega=None, flip=first.C[first.B[:1]], ops=first.ops)
+    pre.attach(flipped)
+    assert len(calls) == 2
+    size = GRID.nodes_x * GRID.nodes_y
+    contact, stick = np.zeros(size, bool), np.zeros(size, bool)
+    contact[flipped.C], stick[flipped.C[flipped.A]] = True, True
+    direction, slope = np.zeros((size, 2)), np.zeros(size)
+    direction[flipped.C[flipped.B]] = np.stack([flipped.dir_x, flipped.dir_y], 1)
+    slope[flipped.C[flipped.B]] = flipped.slope * V / GRID.spacing_x
+    other_mu = SetSystem(replace(flipped.setup, mu=0.2),
+                         SetState(contact=contact, stick=stick, direction=direction, slope=slope))
+    pre.attach(other_mu)
+    assert len(calls) == 3
+    pre.attach(_system(kernels, load=20.0, indentation=None, omega=None, flip=first.C[first.B[:1]]))
+    assert len(calls) == 4
+
+
 def test_line_preconditioner_singular_complement_scales_the_globals(kernels, monkeypatch):
     """When the Schur complement of d and Omega is singular (here: global rows that read
     nothing), the forces get the lines alone and the global rows are passed on, Omega's
