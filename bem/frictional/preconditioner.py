@@ -311,7 +311,9 @@ class LinePreconditioner:
     ``threads`` an application whose operands take :data:`THREAD_FROM` bytes or more, and
     the build's columns and inversions, run on two threads. ``filter_power`` (default
     :data:`FILTER_POWER`, read at construction; 0: the lines alone) sets the row filter
-    applied after the lines.
+    applied after the lines. The global unknowns (``d``, a free ``Omega``) are eliminated
+    by their Schur complement (:func:`_bordered`), whose parts are kept while the contact
+    and stick sets, ``mu`` and the operators repeat.
     """
 
     def __init__(self, dtype=np.float32, threads: bool = True, filter_power: float | None = None):
