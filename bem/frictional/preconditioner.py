@@ -301,9 +301,9 @@ class LinePreconditioner:
     row are solved apart.
 
     Use :meth:`attach` for each new system: it builds what it must and sets
-    ``system.precondition``. The columns of a run's Toeplitz inverses at its slip nodes
-    are kept while its nodes and stick pattern repeat (``factorised`` counts the runs they
-    were computed for); the ``2 p x 2 p`` Woodbury matrices, which hold the slip directions
+    ``system.precondition``. The columns of the runs' Toeplitz inverses at their slip
+    nodes are kept per run length and place while some run asks for them (``factorised``
+    counts the columns computed, ``x`` and ``y`` blocks together); the ``2 p x 2 p`` Woodbury matrices, which hold the slip directions
     and slopes, are built every time, so the solve is exact for every state. The
     applications run in ``dtype`` (single by default: the flexible GMRES of
     :func:`bem.linear.fgmres` keeps every preconditioned vector, so rounding there costs
@@ -436,40 +436,51 @@ class LinePreconditioner:
         if B.size == 0:
             self._blocks = {}
             return []
-        C, stick, diag, M = system.C, system.stick, system.diag, inv.M
+        diag, M = system.diag, inv.M
         sr = run[B]  # the slip nodes' runs, in order
         first = np.searchsorted(sr, np.arange(starts.size))
         count = np.bincount(sr, minlength=starts.size)
         local = B - starts[sr]
-        blocks, todo = {}, []
-        for q in np.flatnonzero(count):
-            nodes = slice(starts[q], starts[q] + lens[q])
-            key = C[nodes].tobytes() + stick[nodes].tobytes()
-            blocks[q] = (key, self._blocks.get(key))
-            if blocks[q][1] is None:
-                todo.append(q)
-        # the columns of the runs' Toeplitz inverses at their slip nodes: unit vectors
-        # through the inverses (their spectra known), runs of about as many slip nodes
-        # together
-        if todo:
+        # a column of a run's Toeplitz inverse depends on the run's length and the column
+        # alone: one per (length, place), shared by runs of one length (the rows y and -y
+        # of a symmetric contact) and kept while it is asked for
+        key = lens[sr] * M + local
+        uniq, which = np.unique(key, return_inverse=True)
+        old_keys, old_cols = self._blocks.get("keys", np.zeros(0, int)), self._blocks.get("columns")
+        found = np.searchsorted(old_keys, uniq)
+        have = found < old_keys.size
+        have[have] = old_keys[found[have]] == uniq[have]
+        columns = np.empty((uniq.size, 2, M), self.dtype)
+        if have.any():
+            columns[have] = old_cols[found[have]]
+        todo = np.flatnonzero(~have)
+        if todo.size:
+            # the missing columns, one row of positions per run length (padded), lengths with
+            # about as many missing columns together
             two = self.threads and (os.cpu_count() or 1) > 1
-            todo.sort(key=lambda q: count[q])
-            while todo:
-                P = count[todo[-1]]
-                part = [todo.pop()]
-                while todo and (len(part) + 1) * P <= CHUNK:
-                    part.append(todo.pop())
-                pos = np.zeros((len(part), P), int)
-                for b, q in enumerate(part):
-                    pos[b, :count[q]] = local[first[q]:first[q] + count[q]]
-                cols = [inv.columns(1 + b, lens[part], pos, self.dtype, two) for b in (0, 1)]
-                for b, q in enumerate(part):
-                    blocks[q] = (blocks[q][0], np.stack([c[b, :count[q]] for c in cols]))
-                self.factorised += len(part)
-        self._blocks = dict(blocks.values())
+            n_of, pos_of = np.divmod(uniq[todo], M)
+            lengths, per = np.unique(n_of, return_counts=True)
+            order = np.argsort(per, kind="stable")[::-1]
+            start = np.r_[0, np.cumsum(per)[:-1]]
+            i = 0
+            while i < order.size:
+                P = per[order[i]]
+                part = order[i:i + max(1, CHUNK // P)]
+                i += part.size
+                pos = np.zeros((part.size, P), int)
+                dest = np.full((part.size, P), -1)
+                for r, g in enumerate(part):
+                    pos[r, :per[g]] = pos_of[start[g]:start[g] + per[g]]
+                    dest[r, :per[g]] = todo[start[g]:start[g] + per[g]]
+                cols = [inv.columns(1 + b, lengths[part], pos, self.dtype, two) for b in (0, 1)]
+                filled = dest >= 0
+                for b in (0, 1):
+                    columns[dest[filled], b] = cols[b][filled]
+            self.factorised += todo.size
+        self._blocks = {"keys": uniq, "columns": columns}
         ex, ey, kk = system.dir_x, system.dir_y, system.slope
         by_size: dict = {}
-        for q in blocks:
+        for q in np.flatnonzero(count):
             by_size.setdefault(-(-count[q] // 8) * 8, []).append(q)
         groups = []
         for P, members in by_size.items():
@@ -477,9 +488,7 @@ class LinePreconditioner:
             p = count[members]
             valid = np.arange(P) < p[:, None]  # (L, P): the slip nodes of each run, then padding
             s = np.where(valid, first[members][:, None] + np.arange(P), 0)  # their slip indices
-            Y = np.zeros((L, 2, P, M), self.dtype)
-            for b, q in enumerate(members):
-                Y[b, :, :p[b]] = blocks[q][1]
+            Y = np.ascontiguousarray((columns[which[s]] * valid[:, :, None, None]).swapaxes(1, 2))  # (L, 2, P, M)
             # G[i, j]: row P_i of column P_j of the runs' Toeplitz inverses (0 on padding)
             loc = np.where(valid, local[s], 0)[:, None, None, :]
             G = np.take_along_axis(Y, np.broadcast_to(loc, (L, 2, P, P)), 3).swapaxes(2, 3) * valid[:, None, None, :]

@@ -332,6 +332,16 @@ def _slip_runs(system):
     return np.unique(_runs(system)[system.B]).size
 
 
+def _slip_columns(system):
+    """The distinct (run length, place in the run) of the slip nodes: the Toeplitz inverse
+    columns the line preconditioner needs (one per pair, whichever runs ask)."""
+    r = _runs(system)
+    lens = np.bincount(r)
+    starts = np.r_[0, np.flatnonzero(np.diff(r)) + 1]
+    place = np.arange(r.size) - starts[r - 1]
+    return set(zip(lens[r][system.B].tolist(), place[system.B].tolist()))
+
+
 def _toeplitz(t, n):
     """``T_n[i, j] = t[M - 1 + i - j]`` for ``t`` of ``2 M - 1`` values."""
     c = (t.size - 1) // 2
@@ -456,7 +466,8 @@ def test_line_preconditioner_is_the_inverse_of_its_run_blocks(kernels, monkeypat
     got = system.precondition(B @ x)
     assert got.shape == (system.n,) and got.dtype == np.float64
     assert np.abs(got - x).max() < tol * np.abs(x).max()
-    assert pre.factorised == _slip_runs(system) > 3
+    assert pre.factorised == len(_slip_columns(system)) > 3
+    assert len(_slip_columns(system)) < system.B.size  # runs of one length share columns
 
 
 @pytest.mark.parametrize("block", ["ww", "duu", "dvv"])
@@ -566,28 +577,31 @@ def test_line_preconditioner_keeps_unchanged_runs_and_rebuilds_changed_ones(kern
     """A second attach with the same sets computes no columns; with every slip direction
     turned (the same sets) none either, and the result is the exact inverse of the new
     run blocks (the Woodbury matrices hold the slip law and are built every time), not
-    of the old ones; flipping one node between stick and slip computes only its run's."""
+    of the old ones; flipping nodes between stick and slip computes only the columns of
+    (run length, place) pairs not asked for before; new operators compute every one."""
     from bem.frictional.preconditioner import LinePreconditioner
 
     pre = LinePreconditioner(dtype=np.float64, filter_power=0)
     first = _system(kernels)
-    runs = _slip_runs(first)
+    cols = _slip_columns(first)
     pre.attach(first)
     x = np.random.default_rng(2).normal(size=first.n)
     for again in (_system(kernels, ops=first.ops), _system(kernels, turn=0.7, ops=first.ops)):
         pre.attach(again)
-        assert pre.factorised == runs
+        assert pre.factorised == len(cols)
         assert np.abs(again.precondition(_line_blocks(again) @ x) - x).max() < 1e-10 * np.abs(x).max()
     assert np.abs(again.precondition(_line_blocks(first) @ x) - x).max() > 1e-3 * np.abs(x).max()
-    node = first.C[first.nC // 2]
-    changed = _system(kernels, flip=node, ops=first.ops)
+    nodes = first.C[first.A[::7]]  # stick nodes turned to slip, some at places already asked for
+    changed = _system(kernels, flip=nodes, ops=first.ops)
+    new = _slip_columns(changed) - cols
+    assert 0 < len(new) < nodes.size
     pre.attach(changed)
-    assert pre.factorised == runs + 1
+    assert pre.factorised == len(cols) + len(new)
     assert np.abs(changed.precondition(_line_blocks(changed) @ x) - x).max() < 1e-10 * np.abs(x).max()
     assert np.abs(changed.precondition(_line_blocks(first) @ x) - x).max() > 1e-6
-    other = _system(kernels, seed=5)  # new operators: every run again
+    other = _system(kernels, seed=5)  # new operators: every column again
     pre.attach(other)
-    assert pre.factorised == runs + 1 + _slip_runs(other)
+    assert pre.factorised == len(cols) + len(new) + len(_slip_columns(other))
 
 
 def test_line_preconditioner_keeps_its_row_inverses_while_they_fit(kernels, monkeypatch):
