@@ -303,8 +303,9 @@ class LinePreconditioner:
     Use :meth:`attach` for each new system: it builds what it must and sets
     ``system.precondition``. The columns of the runs' Toeplitz inverses at their slip
     nodes are kept per run length and place while some run asks for them (``factorised``
-    counts the columns computed, ``x`` and ``y`` blocks together); the ``2 p x 2 p`` Woodbury matrices, which hold the slip directions
-    and slopes, are built every time, so the solve is exact for every state. The
+    counts the columns computed, ``x`` and ``y`` blocks together); the ``2 p x 2 p``
+    Woodbury matrices, which hold the slip directions and slopes, are built every time, so
+    the solve is exact for every state. The
     applications run in ``dtype`` (single by default: the flexible GMRES of
     :func:`bem.linear.fgmres` keeps every preconditioned vector, so rounding there costs
     no accuracy), the columns too, the Woodbury matrices are inverted in double. With
@@ -322,7 +323,7 @@ class LinePreconditioner:
         self.filter_power = FILTER_POWER if filter_power is None else filter_power
         self.inverses: RowInverses | None = None
         self._ops = None
-        self._blocks: dict = {}
+        self._columns: tuple = (np.zeros(0, int), None)  # (length, place) keys, their columns
         self._schur: tuple = (None, None)
         self.factorised = 0
 
@@ -338,7 +339,7 @@ class LinePreconditioner:
                 raise FrictionNotConverged(
                     f"the line preconditioner cannot be built on this grid: {exc}; solve by dense LU "
                     "(raise friction.dense_limit above the system's unknowns) or change the grid spacing") from exc
-            self._ops, self._blocks, self._schur = ops, {}, (None, None)
+            self._ops, self._columns, self._schur = ops, (np.zeros(0, int), None), (None, None)
         return self.inverses
 
     def attach(self, system: SetSystem) -> None:
@@ -434,7 +435,7 @@ class LinePreconditioner:
         r_P)``, ``z = B^{-1} r`` (``docs/derivations.md`` section 5)."""
         B = system.B
         if B.size == 0:
-            self._blocks = {}
+            self._columns = (np.zeros(0, int), None)
             return []
         diag, M = system.diag, inv.M
         sr = run[B]  # the slip nodes' runs, in order
@@ -446,7 +447,7 @@ class LinePreconditioner:
         # of a symmetric contact) and kept while it is asked for
         key = lens[sr] * M + local
         uniq, which = np.unique(key, return_inverse=True)
-        old_keys, old_cols = self._blocks.get("keys", np.zeros(0, int)), self._blocks.get("columns")
+        old_keys, old_cols = self._columns
         found = np.searchsorted(old_keys, uniq)
         have = found < old_keys.size
         have[have] = old_keys[found[have]] == uniq[have]
@@ -477,7 +478,7 @@ class LinePreconditioner:
                 for b in (0, 1):
                     columns[dest[filled], b] = cols[b][filled]
             self.factorised += todo.size
-        self._blocks = {"keys": uniq, "columns": columns}
+        self._columns = (uniq, columns)
         ex, ey, kk = system.dir_x, system.dir_y, system.slope
         by_size: dict = {}
         for q in np.flatnonzero(count):
