@@ -489,7 +489,8 @@ class LinePreconditioner:
             p = count[members]
             valid = np.arange(P) < p[:, None]  # (L, P): the slip nodes of each run, then padding
             s = np.where(valid, first[members][:, None] + np.arange(P), 0)  # their slip indices
-            Y = np.ascontiguousarray((columns[which[s]] * valid[:, :, None, None]).swapaxes(1, 2))  # (L, 2, P, M)
+            Y = np.empty((L, 2, P, M), self.dtype)  # the columns as rows, 0 on padding
+            np.multiply(columns[which[s]].swapaxes(1, 2), valid[:, None, :, None], out=Y)
             # G[i, j]: row P_i of column P_j of the runs' Toeplitz inverses (0 on padding)
             loc = np.where(valid, local[s], 0)[:, None, None, :]
             G = np.take_along_axis(Y, np.broadcast_to(loc, (L, 2, P, P)), 3).swapaxes(2, 3) * valid[:, None, None, :]

@@ -639,6 +639,20 @@ def test_line_preconditioner_keeps_its_row_inverses_while_they_fit(kernels, monk
         assert seen == [np.dtype(np.complex64), (real, np.float32), (real, np.float32)], seen
 
 
+def _bordered_line_blocks(system):
+    """The run blocks of :func:`_line_blocks` bordered by the global unknowns' columns
+    (from the system's rows with no forces) and rows (``SetSystem.global_rows``)."""
+    nC, n = system.nC, system.n
+    k = n - 3 * nC
+    unit = np.zeros((n, k))
+    unit[3 * nC:] = np.eye(k)
+    out = np.zeros((n, n))
+    out[:3 * nC, :3 * nC] = _line_blocks(system)
+    out[:3 * nC, 3 * nC:] = system.rows(np.zeros((nC, k)), np.zeros((nC, k)), np.zeros((nC, k)), unit)[:3 * nC]
+    out[3 * nC:, :3 * nC] = system.global_rows(np.eye(3 * nC))
+    return out
+
+
 def test_line_preconditioner_with_global_unknowns(kernels):
     """Load control and a free Omega add two unknowns (``d`` in every gap row, ``Omega`` in
     the ``x`` stick rows and the slip rows across ``e``; the rows of the load and the loading
@@ -650,16 +664,10 @@ def test_line_preconditioner_with_global_unknowns(kernels):
     system = _system(kernels, load=20.0, indentation=None, omega=None)
     nC, n = system.nC, system.n
     assert n == 3 * nC + 2
-    unit = np.zeros((n, 2))
-    unit[3 * nC:] = np.eye(2)
-    F = system.rows(np.zeros((nC, 2)), np.zeros((nC, 2)), np.zeros((nC, 2)), unit)[:3 * nC]
+    bordered = _bordered_line_blocks(system)
+    F = bordered[:3 * nC, 3 * nC:]
     assert np.count_nonzero(F[:nC, 0]) == nC and not F[nC:, 0].any()  # d: every gap row, only them
     assert not F[:nC, 1].any() and np.count_nonzero(F[nC:, 1]) > 0  # Omega: tangential rows only
-    G = system.global_rows(np.eye(3 * nC))
-    bordered = np.zeros((n, n))
-    bordered[:3 * nC, :3 * nC] = _line_blocks(system)
-    bordered[:3 * nC, 3 * nC:] = F
-    bordered[3 * nC:, :3 * nC] = G
     r = np.random.default_rng(4).normal(size=n)
     LinePreconditioner(dtype=np.float64, filter_power=0).attach(system)
     got = system.precondition(r)
@@ -675,8 +683,8 @@ def test_line_preconditioner_keeps_the_schur_parts_while_the_sets_repeat(kernels
     """The complement of d and Omega is computed once per contact and stick set: a second
     attach with the same sets and turned slip directions reuses it (no new
     ``eliminate``; the result is then not the new blocks' exact bordered inverse, but
-    the same linear map as the first attach's elimination applied with the new lines);
-    a flipped node, another ``mu`` or new operators compute it again."""
+    the first attach's parts applied with the new lines); a flipped node, another ``mu``
+    or new operators compute it again."""
     from dataclasses import replace
 
     from bem.frictional import SetState, SetSystem
@@ -690,8 +698,12 @@ def test_line_preconditioner_keeps_the_schur_parts_while_the_sets_repeat(kernels
     pre.attach(first)
     turned = _system(kernels, load=20.0, indentation=None, omega=None, turn=0.4, ops=first.ops)
     assert np.array_equal(turned.C, first.C) and np.array_equal(turned.stick, first.stick)
+    parts = pre._schur[1]
     pre.attach(turned)
-    assert len(calls) == 1
+    assert len(calls) == 1 and pre._schur[1] is parts
+    r = np.random.default_rng(6).normal(size=turned.n)
+    residual = _bordered_line_blocks(turned) @ turned.precondition(r) - r
+    assert np.abs(residual[:3 * turned.nC]).max() > 1e-6 * np.abs(r).max()  # inexact: the old parts
     flipped = _system(kernels, load=20.0, indentation=None, omega=None, flip=first.C[first.B[:1]], ops=first.ops)
     pre.attach(flipped)
     assert len(calls) == 2
