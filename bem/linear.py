@@ -3,7 +3,8 @@ flexible right-preconditioned restarted GMRES (matrix-free, :func:`fgmres`) on l
 
 A system is any object with ``n`` (unknowns), ``b`` (right-hand side), ``dense()`` (its
 ``n x n`` matrix), ``matvec(x)`` and, optionally, ``precondition(r)`` (an approximate
-inverse; ``None`` when it has none). :class:`LinearSolver` picks the method by ``n``,
+inverse; ``None`` when it has none) and ``residual(x)`` (``b - A x`` of a starting guess,
+when the system can give it without a product). :class:`LinearSolver` picks the method by ``n``,
 counts GMRES iterations over its calls, and raises the caller's error class, with a
 message that says what to change, when a solve fails. The frictionless solver
 (:mod:`bem.contact`) and the frictional one (:mod:`bem.frictional`) both use it.
@@ -257,7 +258,8 @@ class LinearSolver:
         reduced by ``rtol``."""
         n = system.n
         x0 = np.zeros(n) if guess is None else np.asarray(guess, float)
-        b = system.b - system.matvec(x0) if guess is not None else system.b
+        residual = getattr(system, "residual", None)  # b - A x, when the system has it
+        b = system.b if guess is None else residual(x0) if residual else system.b - system.matvec(x0)
         ref = b if self.correction else system.b
         tol = max(rtol * float(np.linalg.norm(ref)), self.floor * float(np.linalg.norm(system.b)))
         inner = getattr(system, "matvec_single", None) if rtol >= self.single_from else None

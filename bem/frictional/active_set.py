@@ -101,6 +101,9 @@ class ActiveSetResult:
         ``h`` (m), ``inf`` where the indenter cannot touch.
     scale : float
         ``|d|`` (m), the scale of the gap residual.
+    fields : tuple of ndarray or None
+        The deflection (m) and upwind strains (-) of the forces (:meth:`~bem.frictional.
+        operators.RollingOperators.fields`, flat); ``None``: computed by who needs them.
     """
 
     N: np.ndarray
@@ -112,6 +115,7 @@ class ActiveSetResult:
     history: list
     gap: np.ndarray
     scale: float
+    fields: tuple | None
 
 
 class LinearSolves:
@@ -165,6 +169,7 @@ def run_active_set(setup: RollingSetup, friction: Friction, start: SetState, sol
     contact, stick = start.contact.copy(), start.stick.copy()
     e_full, k_full = start.direction.copy(), start.slope.copy()
     dropped = np.zeros(size, bool)
+    solved = contact  # the contact set of the last solution
     reentry = False
     seen: dict = {}
     careful = False
@@ -178,6 +183,11 @@ def run_active_set(setup: RollingSetup, friction: Friction, start: SetState, sol
             stick[Sl[np.argmin(np.hypot(wx[Sl], wy[Sl]))]] = True
         system = SetSystem(setup, SetState(contact=contact, stick=stick, direction=e_full, slope=k_full))
         guess = None if it == 1 else system.unknowns(N, Sx, Sy, d, om)
+        if guess is not None and not (solved & ~contact).any():
+            # the guess's forces are the last solution's: its fields, computed for the
+            # violations, give the new rows' residual without another product
+            system.know(guess, [f[system.C] for f in v.fields])
+        solved = contact
         lin0 = solves.iterations
         # inexact solves while the slip law is far from settled (the sets and directions
         # change by more than the solve's error); only a tight solve can end the iteration
@@ -243,7 +253,7 @@ def run_active_set(setup: RollingSetup, friction: Friction, start: SetState, sol
         raise ContactAtEdge("the contact reaches the edge of the candidate region: increase grid.half_width")
     state = SetState(contact=contact, stick=stick, direction=e_full, slope=k_full)
     return ActiveSetResult(N=N, Sx=Sx, Sy=Sy, indentation=d, omega=om, state=state, history=history, gap=v.gap,
-                           scale=v.scale)
+                           scale=v.scale, fields=v.fields)
 
 
 @dataclass(frozen=True)
@@ -268,6 +278,8 @@ class Violations:
         Largest slip-law misfit on them (-): ``||S| / (mu N) - 1|`` or ``|sin(S, w)|``.
     scale : float
         ``|d|`` (m), the scale of the gap.
+    fields : tuple of ndarray
+        The deflection (m) and upwind strains ``du/dx, dv/dx`` (-) of the forces.
     """
 
     gap: np.ndarray
@@ -283,6 +295,7 @@ class Violations:
     slip: np.ndarray
     misfit: float
     scale: float
+    fields: tuple
 
     @property
     def changes(self) -> bool:
@@ -294,7 +307,7 @@ def _measure(setup: RollingSetup, contact, stick, N, Sx, Sy, d, om) -> Violation
     """The violations of the solution ``N, S_x, S_y`` (N), ``d`` (m), ``Omega`` (rad/s)."""
     ops, V, mu = setup.ops, setup.speed, setup.mu
     shape = ops.grid.shape
-    delta, sx, sy = (f.ravel() for f in ops.fields(N.reshape(shape), Sx.reshape(shape), Sy.reshape(shape)))
+    delta, sx, sy = fields = tuple(f.ravel() for f in ops.fields(N.reshape(shape), Sx.reshape(shape), Sy.reshape(shape)))
     h = np.where(setup.reach, setup.profile - d + delta, np.inf)
     wx, wy = V * (1 + sx) - om * setup.ell, V * sy
     scale = max(abs(d), 1e-300)
@@ -312,7 +325,7 @@ def _measure(setup: RollingSetup, contact, stick, N, Sx, Sy, d, om) -> Violation
         mis_dir = np.abs(Sx * wy - Sy * wx)[slip] / (smag * wmag)[slip]
     misfit = float(max(mis_mag.max(initial=0.0), mis_dir.max(initial=0.0)))
     return Violations(gap=h, wx=wx, wy=wy, wmag=wmag, smag=smag, wdot=wdot, drop=drop, add=add, to_slip=to_slip,
-                      to_stick=to_stick, slip=slip, misfit=misfit, scale=scale)
+                      to_stick=to_stick, slip=slip, misfit=misfit, scale=scale, fields=fields)
 
 
 def _next_sets(setup: RollingSetup, v: Violations, contact, stick, N, join_slip, one_node: bool):

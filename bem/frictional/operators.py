@@ -119,16 +119,19 @@ class RollingOperators:
         :mod:`bem.frictional.preconditioner`."""
         key = (power, np.dtype(dtype))
         if key not in self._filters:
-            Ky = self.grid.nodes_y
+            Ky, Kx = self.grid.shape
+            width = self.op("ww").embedding[1]
             out = []
             for name in ("ww", "uu", "vv"):
                 table = self.tables[name] if name in self.tables else self.kernels[name]
-                row = np.zeros_like(table)
-                row[Ky - 1] = table[Ky - 1]
+                # the kernel cut to one grid row: its circulant's symbol is the row's
+                # transform along x, the same for every k_y
+                row = np.zeros(width)
+                row[np.arange(1 - Kx, Kx) % width] = table[Ky - 1]
                 full = self.op(name).spectrum
                 mag = np.abs(full)
                 full = np.where(mag < 1e-3 * mag.max(), 1e-3 * mag.max(), full)
-                out.append((ComplianceOperator(self.grid, row).spectrum / full) ** power)
+                out.append((sfft.rfft(row) / full) ** power)
             self._filters[key] = np.stack(out).astype(dtype)
         return self._filters[key]
 
@@ -219,6 +222,24 @@ class RollingOperators:
                                                     {b: k[cut] for b, k in self.kernels.items()},
                                                     {b: t[cut] for b, t in self.tables.items()})
         return self._windows[shape]
+
+    def window_around(self, rows: np.ndarray, cols: np.ndarray) -> tuple["RollingOperators", int, int]:
+        """The :meth:`window` of a box holding the nodes at grid ``rows`` and ``cols`` (index
+        arrays), and the box's first row and column. Each side is widened to the longest
+        one with the same transform length (``(E + 1) // 2`` nodes for an embedding of ``E``,
+        within the grid; the box moved back inside it where it would leave): the products
+        cost the same, and the contact sets of one solve, whose bounding boxes differ by a
+        node or two, share one window instead of building nine spectra each."""
+        Ky, Kx = self.grid.shape
+
+        def side(idx, K):
+            lo = int(idx.min())
+            n = int(idx.max()) - lo + 1
+            n = min(K, max(n, (sfft.next_fast_len(2 * n - 1, real=True) + 1) // 2))
+            return n, min(lo, K - n)
+
+        (By, j0), (Bx, i0) = side(rows, Ky), side(cols, Kx)
+        return self.window((By, Bx)), j0, i0
 
     def coarse(self, grid: Grid) -> "RollingOperators":
         """The operators of every other node (``grid`` from :func:`bem.contact.coarse_grid`):

@@ -314,7 +314,7 @@ class LinePreconditioner:
     :data:`FILTER_POWER`, read at construction; 0: the lines alone) sets the row filter
     applied after the lines. The global unknowns (``d``, a free ``Omega``) are eliminated
     by their Schur complement (:func:`_bordered`), whose parts are kept while the contact
-    and stick sets, ``mu`` and the operators repeat.
+    set, ``mu`` and the operators repeat.
     """
 
     def __init__(self, dtype=np.float32, threads: bool = True, filter_power: float | None = None):
@@ -412,10 +412,12 @@ class LinePreconditioner:
         if system.n == 3 * nC:
             system.precondition = forces
         else:
-            # the Schur complement's parts are kept while the sets repeat (the directions
-            # and slopes then move little): measured, the same GMRES iterations on the
-            # issue case and section 11 up to 257 x 257, two applications saved an attach
-            key = (system.C.tobytes(), system.stick.tobytes(), system.free_d, system.free_om, system.setup.mu)
+            # the Schur complement's parts are kept while the contact set repeats (the stick
+            # set, directions and slopes then move little): measured, the same GMRES
+            # iterations on the issue case and section 11 up to 257 x 257 as with a new
+            # complement every time, or one for each stick set too; two applications
+            # saved an attach
+            key = (system.C.tobytes(), system.free_d, system.free_om, system.setup.mu)
             kept = self._schur[1] if self._schur[0] == key else None
             system.precondition, parts = _bordered(system, forces, kept)
             self._schur = (key, parts)

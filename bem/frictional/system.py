@@ -134,10 +134,9 @@ class SetSystem:
         self.setup, self.ops = setup, ops
         C = self.C = np.flatnonzero(state.contact)
         self.Cj, self.Ci = np.divmod(C, ops.grid.nodes_x)
-        # the FFT products on the contact's bounding box (RollingOperators.window): the
-        # forces live there and the rows read there
-        j0, i0 = self.Cj.min(), self.Ci.min()
-        self.box = ops.window((int(self.Cj.max() - j0) + 1, int(self.Ci.max() - i0) + 1))
+        # the FFT products on a box around the contact (RollingOperators.window_around):
+        # the forces live there and the rows read there
+        self.box, j0, i0 = ops.window_around(self.Cj, self.Ci)
         self.in_box = (self.Cj - j0) * self.box.grid.nodes_x + (self.Ci - i0)
         nC = self.nC = C.size
         self.free_d, self.free_om = setup.load is not None, setup.omega is None
@@ -227,6 +226,20 @@ class SetSystem:
         C = self.C
         glob = ([d] if self.free_d else []) + ([om / self.om_unit] if self.free_om else [])
         return np.concatenate([N[C], Sx[C], Sy[C], glob])
+
+    def know(self, x: np.ndarray, fields) -> None:
+        """Record the fields ``(gap, du/dx, dv/dx)`` on ``C`` (``nC`` each; the deflection
+        and upwind strains of :meth:`~bem.frictional.operators.RollingOperators.fields`) of
+        the forces of ``x``: :meth:`residual` of that very array then takes no product."""
+        self._known = (x, fields)
+
+    def residual(self, x: np.ndarray) -> np.ndarray:
+        """``b - A x``, from the fields recorded by :meth:`know` when ``x`` is that array."""
+        known = getattr(self, "_known", None)
+        if known is None or known[0] is not x:
+            return self.b - self.matvec(x)
+        gap, sx, sy = (f[:, None] for f in known[1])
+        return self.b - self.rows(gap, self.ax * sx, self.ax * sy, x[:, None])[:, 0]
 
     def matvec(self, x, dtype=np.float64):
         """The product ``A x``; its FFT convolution in ``dtype`` (the rows in double)."""

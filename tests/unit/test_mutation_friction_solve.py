@@ -324,7 +324,7 @@ def test_the_coarse_level_reuses_the_fine_frictionless_solve_s_coarse_solution(b
     monkeypatch.setattr(fs, "solve_rolling", spy)
     friction = Friction(0.3)
     res, _ = solve_friction(problem(grid=BIG), friction, kernels=big_kernels, energy=False)
-    assert [n.grid.shape for n in normals] == [(25, 25)] and rtols == [fs.START_RTOL] == [1e-8]
+    assert [n.grid.shape for n in normals] == [(25, 25)] and rtols == [fs.START_RTOL] == [1e-6]
     assert [shape for shape, _ in handed] == [(25, 25), (13, 13)]
     assert handed[0][1] is None and handed[1][1] is normals[0].coarse is not None
     own = real_normal(ComplianceOperator(normals[0].coarse.grid, big_kernels["ww"][::2, ::2]),
@@ -640,7 +640,7 @@ def test_residuals_of_a_state_off_the_solution(kernels, monkeypatch):
         Sx[k] *= 1.5
         off = np.flatnonzero(np.isfinite(gap) & ~st.contact)[0]
         gap[off] = -1e-9 * out.scale
-        return dataclasses.replace(out, Sx=Sx, Sy=Sy, gap=gap)
+        return dataclasses.replace(out, Sx=Sx, Sy=Sy, gap=gap, fields=None)  # fields: of the new forces
 
     monkeypatch.setattr(fs, "run_active_set", disturbed)
     friction = Friction(0.3, "omega", omega=0.99 * V / R)
@@ -967,7 +967,7 @@ def _violations(n, **over):
 
     zero, no = np.zeros(n), np.zeros(n, bool)
     fields = dict(gap=np.ones(n), wx=zero, wy=zero, wmag=zero, smag=zero, wdot=zero, drop=no, add=no,
-                  to_slip=no, to_stick=no, slip=no, misfit=0.0, scale=1.0)
+                  to_slip=no, to_stick=no, slip=no, misfit=0.0, scale=1.0, fields=())
     fields.update({k: np.asarray(v) for k, v in over.items()})
     return Violations(**fields)
 

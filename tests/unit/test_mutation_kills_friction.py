@@ -679,12 +679,12 @@ def test_line_preconditioner_with_global_unknowns(kernels):
     assert not np.allclose(system.precondition(r2)[:3 * nC], got[:3 * nC])
 
 
-def test_line_preconditioner_keeps_the_schur_parts_while_the_sets_repeat(kernels, monkeypatch):
-    """The complement of d and Omega is computed once per contact and stick set: a second
-    attach with the same sets and turned slip directions reuses it (no new
-    ``eliminate``; the result is then not the new blocks' exact bordered inverse, but
-    the first attach's parts applied with the new lines); a flipped node, another ``mu``
-    or new operators compute it again."""
+def test_line_preconditioner_keeps_the_schur_parts_while_the_contact_set_repeats(kernels, monkeypatch):
+    """The complement of d and Omega is computed once per contact set: a second attach
+    with the same contact, turned slip directions or a node flipped between stick and
+    slip reuses it (no new ``eliminate``; the result is then not the new blocks' exact
+    bordered inverse, but the first attach's parts applied with the new lines); another
+    contact set, another ``mu`` or new operators compute it again."""
     from dataclasses import replace
 
     from bem.frictional import SetState, SetSystem
@@ -705,8 +705,14 @@ def test_line_preconditioner_keeps_the_schur_parts_while_the_sets_repeat(kernels
     residual = _bordered_line_blocks(turned) @ turned.precondition(r) - r
     assert np.abs(residual[:3 * turned.nC]).max() > 1e-6 * np.abs(r).max()  # inexact: the old parts
     flipped = _system(kernels, load=20.0, indentation=None, omega=None, flip=first.C[first.B[:1]], ops=first.ops)
+    assert not np.array_equal(flipped.stick, first.stick)
     pre.attach(flipped)
+    assert len(calls) == 1 and pre._schur[1] is parts
+    holed = _system(kernels, load=20.0, indentation=None, omega=None, hole=first.C[first.nC // 2], ops=first.ops)
+    pre.attach(holed)
     assert len(calls) == 2
+    pre.attach(flipped)
+    assert len(calls) == 3
     size = GRID.nodes_x * GRID.nodes_y
     contact, stick = np.zeros(size, bool), np.zeros(size, bool)
     contact[flipped.C], stick[flipped.C[flipped.A]] = True, True
@@ -716,9 +722,9 @@ def test_line_preconditioner_keeps_the_schur_parts_while_the_sets_repeat(kernels
     other_mu = SetSystem(replace(flipped.setup, mu=0.2),
                          SetState(contact=contact, stick=stick, direction=direction, slope=slope))
     pre.attach(other_mu)
-    assert len(calls) == 3
-    pre.attach(_system(kernels, load=20.0, indentation=None, omega=None, flip=first.C[first.B[:1]]))
     assert len(calls) == 4
+    pre.attach(_system(kernels, load=20.0, indentation=None, omega=None, flip=first.C[first.B[:1]]))
+    assert len(calls) == 5
 
 
 @pytest.mark.parametrize("omega", [None, 2.4])
@@ -912,7 +918,7 @@ def test_continuation_ladder_starts_and_history(monkeypatch, mu, ladder):
         progresses.append(progress)
         marker = types.SimpleNamespace(mu=friction.mu)
         return ActiveSetResult(N=np.full(4, friction.mu), Sx=None, Sy=None, indentation=0.0, omega=0.0,
-                               state=marker, history=[(len(calls), friction.mu)], gap=None, scale=1.0)
+                               state=marker, history=[(len(calls), friction.mu)], gap=None, scale=1.0, fields=())
 
     monkeypatch.setattr(starts, "run_active_set", fake)
     N0 = np.array([1.0, 0.0, 2.0, 3.0])
@@ -943,7 +949,7 @@ def test_continuation_failure_names_where_it_stopped(monkeypatch):
         if friction.mu < 0.1:
             raise FrictionNotConverged("cycled")
         return ActiveSetResult(N=None, Sx=None, Sy=None, indentation=0.0, omega=0.0, state=state,
-                               history=[], gap=None, scale=1.0)
+                               history=[], gap=None, scale=1.0, fields=())
 
     monkeypatch.setattr(starts, "run_active_set", fake)
     with pytest.raises(FrictionNotConverged) as info:
