@@ -324,7 +324,7 @@ def test_the_coarse_level_reuses_the_fine_frictionless_solve_s_coarse_solution(b
     monkeypatch.setattr(fs, "solve_rolling", spy)
     friction = Friction(0.3)
     res, _ = solve_friction(problem(grid=BIG), friction, kernels=big_kernels, energy=False)
-    assert [n.grid.shape for n in normals] == [(25, 25)] and rtols == [fs.START_RTOL] == [1e-6]
+    assert [n.grid.shape for n in normals] == [(25, 25)] and rtols == [fs.START_RTOL] == [1e-8]
     assert [shape for shape, _ in handed] == [(25, 25), (13, 13)]
     assert handed[0][1] is None and handed[1][1] is normals[0].coarse is not None
     own = real_normal(ComplianceOperator(normals[0].coarse.grid, big_kernels["ww"][::2, ::2]),
