@@ -1149,3 +1149,58 @@ def test_which_solves_are_tight(misfit, changes, careful, dense, tight):
     from bem.frictional.active_set import tight_solve
 
     assert tight_solve(misfit, changes, careful, dense) is tight
+
+
+def test_the_next_residual_reads_the_last_solution_s_fields(kernels, monkeypatch):
+    """A solve after the first starts from the last solution. When none of its forces lies
+    outside the new contact, the fields the violations computed are handed over
+    (``SetSystem.know``): they are the guess's fields (recomputed here by FFT products of
+    the guess's forces) and its residual then takes no product; after the contact lost a
+    node they are not handed over (they would hold that node's force). From the
+    frictionless contact of 30 N under 20 N the contact shrinks first."""
+    import bem.frictional.active_set as act
+    from bem.frictional import SetSystem
+
+    calls = []  # per system: (its contact, whether know was called)
+    products = []
+
+    class Spy(SetSystem):
+        def __init__(self, setup, state):
+            super().__init__(setup, state)
+            calls.append([state.contact.copy(), False])
+
+        def know(self, x, fields):
+            size = GRID.nodes_x * GRID.nodes_y
+            N, Sx, Sy = (np.zeros(size) for _ in range(3))
+            N[self.C], Sx[self.C], Sy[self.C] = x[:self.nC], x[self.nC:2 * self.nC], x[2 * self.nC:3 * self.nC]
+            want = self.ops.fields(*(a.reshape(GRID.shape) for a in (N, Sx, Sy))).reshape(3, -1)[:, self.C]
+            for got, ref in zip(fields, want):
+                np.testing.assert_allclose(got, ref, rtol=0, atol=1e-12 * np.abs(ref).max())
+            calls[-1][1] = True
+            super().know(x, fields)
+
+        def residual(self, x):
+            before = len(products)
+            out = super().residual(x)
+            calls[-1].append(len(products) - before)  # the products it took
+            return out
+
+        def matvec(self, x, dtype=np.float64):
+            products.append(dtype)
+            return super().matvec(x, dtype)
+
+    monkeypatch.setattr(act, "SetSystem", Spy)
+    friction = Friction(0.3, "omega", omega=0.99 * V / R, dense_limit=0)
+    setup, start = _rolling_setup(kernels, friction, start_load=30.0)
+    solves = act.LinearSolves(0)
+    out = act.run_active_set(setup, friction, start, solves)
+    assert len(calls) == len(out.history) >= 3
+    dropped = [bool((a[0] & ~b[0]).any()) for a, b in zip(calls, calls[1:])]
+    assert calls[0][1] is False and [c[1] for c in calls[1:]] == [not d for d in dropped]
+    assert any(dropped) and not all(dropped)
+    # the starting residual took one product exactly where the fields were not known
+    assert [c[2] for c in calls[1:]] == [int(d) for d in dropped]
+    # the result's fields are the last violations' (those of its forces)
+    N2, X2, Y2 = (a.reshape(GRID.shape) for a in (out.N, out.Sx, out.Sy))
+    for got, ref in zip(out.fields, setup.ops.fields(N2, X2, Y2)):
+        np.testing.assert_allclose(got, ref.ravel(), rtol=0, atol=1e-12 * np.abs(ref).max())

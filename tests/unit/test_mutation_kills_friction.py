@@ -222,6 +222,51 @@ def test_a_window_is_the_whole_grid_s_product_inside_a_box(box, at):
             ops.window(bad)
 
 
+def test_window_around_widens_to_the_same_transform_and_shares_it():
+    """The box around a node set: each side widened to ``(E + 1) // 2`` nodes for the
+    transform length ``E`` of the tight side (never a longer transform), moved back inside
+    the grid at its far edge, the whole grid's side where that is shorter; node sets whose
+    tight boxes differ by a node share one window; the products on it, placed by the
+    returned corner, are the whole grid's at the nodes."""
+    import scipy.fft as sfft
+
+    from bem.frictional.operators import RollingOperators
+
+    grid = Grid(1.0e-3, 1.0e-3, 0.06, 0.06, 60, 60, 41, 33)  # 41 x 33 nodes
+    ops = RollingOperators(grid, _random_kernels(grid, seed=21))
+    Ky, Kx = grid.shape
+
+    def widened(n, K):
+        return min(K, max(n, (sfft.next_fast_len(2 * n - 1, real=True) + 1) // 2))
+
+    rng = np.random.default_rng(22)
+    for (j0, j1), (i0, i1) in (((3, 12), (5, 17)), ((20, 32), (30, 40)), ((0, 32), (0, 40)), ((7, 7), (9, 9))):
+        rows, cols = np.array([j0, j1, (j0 + j1) // 2]), np.array([i1, i0, (i0 + i1) // 2])
+        w, b0, a0 = ops.window_around(rows, cols)
+        By, Bx = widened(j1 - j0 + 1, Ky), widened(i1 - i0 + 1, Kx)
+        assert w.grid.shape == (By, Bx) and w is ops.window((By, Bx))
+        assert 0 <= b0 <= j0 and j1 < b0 + By <= Ky and 0 <= a0 <= i0 and i1 < a0 + Bx <= Kx
+        assert b0 == min(j0, Ky - By) and a0 == min(i0, Kx - Bx)
+        tight = ops.window((j1 - j0 + 1, i1 - i0 + 1))
+        assert all(e <= t for e, t in zip(w.op("ww").embedding, tight.op("ww").embedding))
+        nodes = np.unique(rng.integers(j0, j1 + 1, 20) * Kx + rng.integers(i0, i1 + 1, 20))
+        forces = rng.normal(size=(3, nodes.size))
+        jn, in_ = np.divmod(nodes, Kx)
+        got = w.fields_on((jn - b0) * Bx + (in_ - a0), forces)
+        full = [np.zeros(Ky * Kx) for _ in range(3)]
+        for f, vals in zip(full, forces):
+            f[nodes] = vals
+        want = ops.fields(*(f.reshape(Ky, Kx) for f in full)).reshape(3, -1)[:, nodes]
+        _close(got, want)
+    # tight sides of 11 and 12 nodes both take a transform of 24: one window of 12 x 12
+    assert widened(11, Ky) == widened(12, Ky) == 12
+    w12 = ops.window_around(np.array([3, 14]), np.array([5, 16]))[0]
+    assert w12.grid.shape == (12, 12) and ops.window_around(np.array([4, 14]), np.array([5, 15]))[0] is w12
+    # the whole grid when the widened sides reach it
+    w, b0, a0 = ops.window_around(np.array([0, Ky - 1]), np.array([0, Kx - 1]))
+    assert w is ops and (b0, a0) == (0, 0)
+
+
 def test_coarse_operators_are_every_other_node():
     """The coarse level (bem.contact.coarse_grid, 25 x 25 -> 13 x 13) reads the kernels at
     even offsets: its dense blocks between coarse nodes are the fine ones between the
@@ -1114,3 +1159,36 @@ def test_the_single_precision_product_is_single_and_close(kernels):
     assert single.dtype == np.float64
     err = np.abs(single - exact).max() / np.abs(exact).max()
     assert 1e-12 < err < 1e-7, err
+
+
+@pytest.mark.parametrize("load, indentation, omega", [(20.0, None, None), (None, 1e-4, 2.4)])
+def test_a_known_residual_is_the_product_s(kernels, load, indentation, omega):
+    """``SetSystem.residual`` of the array whose fields were recorded (``know``) equals
+    ``b - A x`` by the FFT product to rounding, without a product; of any other array
+    (an equal copy too) it takes the product; ``LinearSolver`` starts from it."""
+    from bem.linear import LinearSolver
+
+    system = _system(kernels, load=load, indentation=indentation, omega=omega)
+    rng = np.random.default_rng(31)
+    x = rng.normal(size=system.n)
+    want = system.b - system.matvec(x)
+    ops, C, nC = system.ops, system.C, system.nC
+    size = GRID.nodes_x * GRID.nodes_y
+    full = [np.zeros(size) for _ in range(3)]
+    for k, f in enumerate(full):
+        f[C] = x[k * nC:(k + 1) * nC]
+    fields = ops.fields(*(f.reshape(GRID.shape) for f in full)).reshape(3, -1)[:, C]
+    system.know(x, list(fields))
+    products = []
+    real = system.matvec
+    system.matvec = lambda v, dtype=np.float64: products.append(1) or real(v, dtype)
+    np.testing.assert_allclose(system.residual(x), want, rtol=0, atol=1e-12 * np.abs(want).max())
+    assert products == []
+    np.testing.assert_allclose(system.residual(x.copy()), want, rtol=0, atol=1e-12 * np.abs(want).max())
+    assert products == [1]
+    seen = []
+    system.residual = lambda v: seen.append(v) or want
+    system.precondition = None
+    with pytest.raises(RuntimeError, match="GMRES did not reduce"):  # one step cannot reach 1e-30
+        LinearSolver(0, 1e-30, maxiter=1, restart=1)._fgmres(system, None, x, 1e-30, "", "")
+    assert len(seen) == 1 and seen[0] is x
