@@ -4,9 +4,9 @@ flexible right-preconditioned restarted GMRES (matrix-free, :func:`fgmres`) on l
 A system is any object with ``n`` (unknowns), ``b`` (right-hand side), ``dense()`` (its
 ``n x n`` matrix), ``matvec(x)`` and, optionally, ``precondition(r)`` (an approximate
 inverse; ``None`` when it has none) and ``residual(x)`` (``b - A x`` of a starting guess,
-when the system can give it without a product). :class:`LinearSolver` picks the method by ``n``,
-counts GMRES iterations over its calls, and raises the caller's error class, with a
-message that says what to change, when a solve fails. The frictionless solver
+when the system can give it without a product). :class:`LinearSolver` picks the method
+by ``n``, counts GMRES iterations over its calls, and raises the caller's error class,
+with a message that says what to change, when a solve fails. The frictionless solver
 (:mod:`bem.contact`) and the frictional one (:mod:`bem.frictional`) both use it.
 """
 

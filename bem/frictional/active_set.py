@@ -307,7 +307,8 @@ def _measure(setup: RollingSetup, contact, stick, N, Sx, Sy, d, om) -> Violation
     """The violations of the solution ``N, S_x, S_y`` (N), ``d`` (m), ``Omega`` (rad/s)."""
     ops, V, mu = setup.ops, setup.speed, setup.mu
     shape = ops.grid.shape
-    delta, sx, sy = fields = tuple(f.ravel() for f in ops.fields(N.reshape(shape), Sx.reshape(shape), Sy.reshape(shape)))
+    fields = tuple(f.ravel() for f in ops.fields(N.reshape(shape), Sx.reshape(shape), Sy.reshape(shape)))
+    delta, sx, sy = fields
     h = np.where(setup.reach, setup.profile - d + delta, np.inf)
     wx, wy = V * (1 + sx) - om * setup.ell, V * sy
     scale = max(abs(d), 1e-300)

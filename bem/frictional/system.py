@@ -128,6 +128,7 @@ class SetSystem:
     :mod:`bem.frictional.preconditioner`)."""
 
     precondition = None
+    _known = None  # (x, its fields on C), see know
 
     def __init__(self, setup: RollingSetup, state: SetState):
         ops, V = setup.ops, setup.speed
@@ -228,17 +229,16 @@ class SetSystem:
         return np.concatenate([N[C], Sx[C], Sy[C], glob])
 
     def know(self, x: np.ndarray, fields) -> None:
-        """Record the fields ``(gap, du/dx, dv/dx)`` on ``C`` (``nC`` each; the deflection
-        and upwind strains of :meth:`~bem.frictional.operators.RollingOperators.fields`) of
-        the forces of ``x``: :meth:`residual` of that very array then takes no product."""
+        """Record the fields of the forces of ``x`` on ``C``: the deflection and the upwind
+        strains ``du/dx, dv/dx`` (``nC`` each, :meth:`~bem.frictional.operators.
+        RollingOperators.fields`); :meth:`residual` of that very array then takes no product."""
         self._known = (x, fields)
 
     def residual(self, x: np.ndarray) -> np.ndarray:
         """``b - A x``, from the fields recorded by :meth:`know` when ``x`` is that array."""
-        known = getattr(self, "_known", None)
-        if known is None or known[0] is not x:
+        if self._known is None or self._known[0] is not x:
             return self.b - self.matvec(x)
-        gap, sx, sy = (f[:, None] for f in known[1])
+        gap, sx, sy = (f[:, None] for f in self._known[1])
         return self.b - self.rows(gap, self.ax * sx, self.ax * sy, x[:, None])[:, 0]
 
     def matvec(self, x, dtype=np.float64):
