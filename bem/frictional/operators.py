@@ -235,7 +235,7 @@ class RollingOperators:
         def side(idx, K):
             lo = int(idx.min())
             n = int(idx.max()) - lo + 1
-            n = min(K, max(n, (sfft.next_fast_len(2 * n - 1, real=True) + 1) // 2))
+            n = min(K, (sfft.next_fast_len(2 * n - 1, real=True) + 1) // 2)  # >= n: the length is >= 2 n - 1
             return n, min(lo, K - n)
 
         (By, j0), (Bx, i0) = side(rows, Ky), side(cols, Kx)
