@@ -265,8 +265,8 @@ def _bordered(system: SetSystem, forces, kept=None):
     :meth:`SetSystem.rows` with no forces, their rows from :meth:`SetSystem.global_rows`);
     when that complement is singular, the former treatment: the global rows passed on,
     ``Omega``'s scaled by the inverse of its stick-row coefficient ``1 / a_x``. ``kept``:
-    the complement's parts from an earlier state with the same sets, reused (returns the
-    preconditioner and the parts it used).
+    the complement's parts from an earlier state with the same contact set, reused
+    (returns the preconditioner and the parts it used).
 
     With the former treatment the preconditioned operator kept a real pair of outliers at
     about -113 and 116 whose vectors lay 88 % on ``d`` and ``Omega`` and a complex pair at
