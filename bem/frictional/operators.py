@@ -110,17 +110,26 @@ class RollingOperators:
         emb = self.op("ww").embedding
         return sfft.irfft(sfft.ifft(F, axis=-2, overwrite_x=True)[:, :self.grid.nodes_y], n=emb[1])
 
-    def row_filter(self, power: float, dtype=np.complex128) -> np.ndarray:
-        """The spectra ``(3, E_y, E_x / 2 + 1)`` of ``(C_row / C) ** power`` for the blocks
+    def row_filter(self, power: float, dtype=np.complex128, *, long: float | None = None,
+                   waves: float = 5.0) -> np.ndarray:
+        """The spectra ``(3, E_y, E_x / 2 + 1)`` of ``(C_row / C) ** q`` for the blocks
         ``ww, uu, vv`` on this grid's embedding (-): ``C`` the block's symbol, ``C_row``
         that of its kernel cut to one grid row (``C`` averaged over ``k_y``), what a solve
         on lines along ``x`` sees. Where ``|C|`` is below 1e-3 of its largest it is taken
-        as that floor. Computed in double precision, kept per ``power`` and ``dtype``; see
+        as that floor. The exponent ``q`` is ``power``; with ``long`` it runs from ``long``
+        on the longest waves to ``power`` on the short ones, ``q = power + (long - power)
+        exp(-(n / waves)^2)``, ``n`` the number of waves across this grid (``hypot(f_x K_x,
+        f_y K_y)``, ``f`` in cycles a node, ``K`` the nodes a side). Computed in double
+        precision, kept per exponent and ``dtype``; see
         :mod:`bem.frictional.preconditioner`."""
-        key = (power, np.dtype(dtype))
+        key = (power, long, waves, np.dtype(dtype))
         if key not in self._filters:
             Ky, Kx = self.grid.shape
-            width = self.op("ww").embedding[1]
+            Ey, width = self.op("ww").embedding
+            q = power
+            if long is not None:
+                n = np.hypot(sfft.rfftfreq(width)[None, :] * Kx, sfft.fftfreq(Ey)[:, None] * Ky)
+                q = power + (long - power) * np.exp(-(n / waves) ** 2)
             out = []
             for name in ("ww", "uu", "vv"):
                 table = self.tables[name] if name in self.tables else self.kernels[name]
@@ -131,7 +140,7 @@ class RollingOperators:
                 full = self.op(name).spectrum
                 mag = np.abs(full)
                 full = np.where(mag < 1e-3 * mag.max(), 1e-3 * mag.max(), full)
-                out.append((sfft.rfft(row) / full) ** power)
+                out.append((sfft.rfft(row) / full) ** q)
             self._filters[key] = np.stack(out).astype(dtype)
         return self._filters[key]
 

@@ -49,7 +49,8 @@ from ..friction import FrictionNotConverged
 from ..linear import bordered, eliminate
 from .system import SetSystem
 
-__all__ = ["LinePreconditioner", "RowInverses", "levinson", "FILTER_POWER", "THREAD_FROM"]
+__all__ = ["LinePreconditioner", "RowInverses", "levinson", "FILTER_POWER", "FILTER_LONG", "FILTER_WAVES",
+           "THREAD_FROM"]
 
 #: the lines' forces are multiplied, in Fourier space on the contact's box, by
 #: ``(C_row / C) ** FILTER_POWER`` per component (``ww``, ``uu``, ``vv``;
@@ -67,6 +68,24 @@ __all__ = ["LinePreconditioner", "RowInverses", "levinson", "FILTER_POWER", "THR
 #: or on both sides: no better (129 x 129: 35 at 0.5; 0.3 on each side 39); the normal or
 #: the tangential components alone: 67 and 56
 FILTER_POWER = 0.5
+#: the row filter's power on the longest waves, blended into :data:`FILTER_POWER` on the
+#: short ones (:meth:`~bem.frictional.operators.RollingOperators.row_filter`'s ``long``,
+#: over :data:`FILTER_WAVES` waves across the contact's box; ``None``: one power). The
+#: forces smooth over the contact are the top of the spectrum that power 1/2 leaves (at
+#: 2.5-3.2 on the issue-11 case at 61 x 61, against 0.37-1.5 for the rest; 66-85 % of
+#: such a mode on aggregates of 8 x 8 nodes), and away from the run ends the exact
+#: correction is power 1; the run ends' disturbance is in the short waves. Measured (GMRES
+#: iterations from zero to 1e-10 |b| on the converged fine states, power 1/2 throughout ->
+#: 0.8 on waves of up to about 5 a box; the same for 0.7 within 1-2): issue-11 case
+#: 61 x 61 29 -> 25, 121 x 121 33 -> 27; section 11 at 129 x 129 31 -> 26, 257 x 257
+#: 38 -> 33, 513 x 513 53 -> 45. Whole solves (fine-grid active-set / GMRES iterations,
+#: ``long`` 0.7 / 0.8 / 0.9 / 1 at 5 waves): 61 x 61 5/65, 5/62, 5/61, 5/64 against 5/73;
+#: 121 x 121 5/76, 6/74, 6/72, 7/77 against 5/84; 257 x 257 7/90, 10/128, 8/93, 10/141
+#: against 8/112 (the loose solves' error moves the active set); 0.7 kept
+FILTER_LONG = 0.7
+#: waves across the contact's box at which the row filter's power is ``1/e`` of the way
+#: from :data:`FILTER_LONG` to :data:`FILTER_POWER`
+FILTER_WAVES = 5.0
 #: an application runs on two threads (half the runs each) when the runs' operands (the
 #: inverses or the spectra of the three blocks) take this many bytes or more
 THREAD_FROM = 4_000_000
@@ -311,16 +330,19 @@ class LinePreconditioner:
     no accuracy), the columns too, the Woodbury matrices are inverted in double. With
     ``threads`` an application whose operands take :data:`THREAD_FROM` bytes or more, and
     the build's columns and inversions, run on two threads. ``filter_power`` (default
-    :data:`FILTER_POWER`, read at construction; 0: the lines alone) sets the row filter
+    :data:`FILTER_POWER`, read at construction; 0: the lines alone) and ``filter_long``
+    (:data:`FILTER_LONG`; ``None``: ``filter_power`` on every wave) set the row filter
     applied after the lines. The global unknowns (``d``, a free ``Omega``) are eliminated
     by their Schur complement (:func:`_bordered`), whose parts are kept while the contact
     set, ``mu`` and the operators repeat.
     """
 
-    def __init__(self, dtype=np.float32, threads: bool = True, filter_power: float | None = None):
+    def __init__(self, dtype=np.float32, threads: bool = True, filter_power: float | None = None,
+                 filter_long: float | None = FILTER_LONG):
         self.dtype = np.dtype(dtype)
         self.threads = threads
         self.filter_power = FILTER_POWER if filter_power is None else filter_power
+        self.filter_long = filter_long
         self.inverses: RowInverses | None = None
         self._ops = None
         self._columns: tuple = (np.zeros(0, int), None)  # (length, place) keys, their columns
@@ -368,7 +390,7 @@ class LinePreconditioner:
         two = self.threads and (os.cpu_count() or 1) > 1 and size >= THREAD_FROM
         box, spectra = system.box, None
         if self.filter_power:
-            spectra = box.row_filter(self.filter_power, cplx)
+            spectra = box.row_filter(self.filter_power, cplx, long=self.filter_long, waves=FILTER_WAVES)
 
         def correct(Z, c, qs):
             for (members, _, _, _, Y), q in zip(groups, qs):

@@ -674,7 +674,8 @@ def test_line_preconditioner_keeps_its_row_inverses_while_they_fit(kernels, monk
         (op.dtype, v.dtype)) or solve(self, op, v, threads))
     box = system.box
     row_filter = box.row_filter
-    monkeypatch.setattr(box, "row_filter", lambda power, dtype: seen.append(np.dtype(dtype)) or row_filter(power, dtype))
+    monkeypatch.setattr(box, "row_filter", lambda power, dtype, **blend: seen.append(np.dtype(dtype)) or row_filter(
+        power, dtype, **blend))
     for dense_upto in (0, 96):
         monkeypatch.setattr(P, "DENSE_UPTO", dense_upto)
         seen.clear()
