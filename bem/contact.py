@@ -39,7 +39,7 @@ from .operator import ComplianceOperator
 __all__ = [
     "ContactError", "ContactNotConverged", "ContactAtEdge", "SolveRecord", "ContactFigures", "NormalContact",
     "solve_normal", "grid_summary", "pressure_centroid_x", "SHARED_SCALARS", "NormalSystem", "coarse_grid",
-    "edge_nodes", "DENSE_LIMIT",
+    "edge_nodes", "coarse_solution", "DENSE_LIMIT",
 ]
 
 
@@ -275,27 +275,45 @@ def coarse_grid(grid: Grid) -> Grid | None:
                 grid.truncation_x, grid.truncation_y, (Kx + 1) // 2, (Ky + 1) // 2)
 
 
-def _coarse_start(operator, s, reachable, load, indentation, dense_limit, rtol):
-    """Trial contact set from the same problem on every other node (recursively).
+def coarse_solution(operator: ComplianceOperator, profile: np.ndarray, *, load: float | None = None,
+                    indentation: float | None = None, dense_limit: int = DENSE_LIMIT,
+                    rtol: float = 1e-11) -> NormalContact | None:
+    """:func:`solve_normal` of the same problem on every other node (:func:`coarse_grid`;
+    the kernel table read at even offsets, the exact compliance between those nodes), or
+    ``None`` when the grid has no coarse level, the indentation reaches no coarse node or
+    the coarse solve fails."""
+    grid = operator.grid
+    coarse = coarse_grid(grid)
+    if coarse is None:
+        return None
+    prof = np.asarray(profile, dtype=float).reshape(grid.shape)[::2, ::2]
+    if indentation is not None and not (prof < indentation).any():
+        return None
+    try:
+        return solve_normal(ComplianceOperator(coarse, operator.kernel[::2, ::2]), prof, load=load,
+                            indentation=indentation, dense_limit=dense_limit, rtol=rtol)
+    except ContactError:
+        return None
 
-    The subgrid's operator is the kernel table read at even offsets (the exact compliance
-    between those nodes); its contact set, upsampled and widened by one node, starts the
-    active set on the full grid, which then needs a few iterations instead of tens.
-    Returns the start set and the coarse solution, or ``(None, None)`` when the grid is
-    small (< 625 nodes) or even-sized, or the coarse solve fails.
+
+def _coarse_start(operator, s, reachable, load, indentation, dense_limit, rtol, known=None):
+    """Trial contact set from the same problem on every other node (recursively,
+    :func:`coarse_solution`; ``known``: that solution when already solved).
+
+    Its contact set, upsampled and widened by one node, starts the active set on the full
+    grid, which then needs a few iterations instead of tens. Returns the start set and the
+    coarse solution, or ``(None, None)`` when the grid is small (< 625 nodes) or
+    even-sized, or the coarse solve fails.
     """
     grid = operator.grid
     Ky, Kx = grid.shape
     coarse = coarse_grid(grid)
     if coarse is None:
         return None, None
-    sub = ComplianceOperator(coarse, operator.kernel[::2, ::2])
-    prof = np.where(reachable, s, np.inf).reshape(Ky, Kx)[::2, ::2]
-    if indentation is not None and not (prof < indentation).any():
-        return None, None  # the indentation reaches no coarse node
-    try:
-        res = solve_normal(sub, prof, load=load, indentation=indentation, dense_limit=dense_limit, rtol=rtol)
-    except ContactError:
+    res = known if known is not None and known.grid.shape == coarse.shape else coarse_solution(
+        operator, np.where(reachable, s, np.inf), load=load, indentation=indentation, dense_limit=dense_limit,
+        rtol=rtol)
+    if res is None:
         return None, None
     up = np.zeros((Ky, Kx), dtype=bool)
     up[::2, ::2] = res.contact
@@ -314,6 +332,7 @@ def solve_normal(
     dense_limit: int = DENSE_LIMIT,
     rtol: float = 1e-11,
     progress: Callable[[str], None] | None = None,
+    coarse: NormalContact | None = None,
 ) -> NormalContact:
     """Frictionless contact under load control (``load``, N) or displacement control
     (``indentation``, m); give exactly one.
@@ -335,6 +354,10 @@ def solve_normal(
         GMRES relative tolerance.
     progress : callable, optional
         Called with one line per active-set iteration.
+    coarse : NormalContact, optional
+        The same problem already solved on every other node (:func:`coarse_grid`): its
+        contact starts the active set instead of a new coarse solve (ignored when its grid
+        is not that one).
 
     Raises
     ------
@@ -367,7 +390,7 @@ def solve_normal(
     else:
         first = reachable
     solve = LinearSolver(dense_limit, rtol, restart=100, maxiter=100, error=ContactNotConverged)
-    start, coarse = _coarse_start(operator, s, reachable, load, indentation, dense_limit, rtol)
+    start, coarse = _coarse_start(operator, s, reachable, load, indentation, dense_limit, rtol, coarse)
     active = first.copy() if start is None or not start.any() else start
     seen: set[bytes] = set()
     careful = False

@@ -4,12 +4,13 @@ from __future__ import annotations
 
 import math
 import time
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import replace
 from typing import Callable
 
 import numpy as np
 
-from ..contact import ContactError, NormalContact, coarse_grid, solve_normal
+from ..contact import ContactError, NormalContact, coarse_grid, coarse_solution, solve_normal
 from ..energy import viscous_dissipation
 from ..friction import Friction, FrictionalContact, FrictionNotConverged, FrictionRecord, LoadingUnreachable
 from ..kinematics import indenter_radius, rolling_radius
@@ -21,7 +22,7 @@ from .operators import RollingOperators
 from .starts import coarse_start, continuation, frictionless_start, saturation_creepage
 from .system import RollingSetup
 
-__all__ = ["solve_friction", "solve_rolling", "COARSE_SETTLE", "START_RTOL"]
+__all__ = ["solve_friction", "solve_rolling", "COARSE_SETTLE", "START_RTOL", "OVERLAP_FROM"]
 
 #: a coarse level of the start ends once its sets repeat and its slip misfit is at most
 #: this (-), without the tight solve (:func:`run_active_set`'s ``settle``): the fine grid
@@ -40,6 +41,12 @@ COARSE_SETTLE = 0.1
 #: 129 x 129, and 1e-6 made it cycle at 513 x 513 (section 11: ContactNotConverged after 8
 #: iterations; session 28)
 START_RTOL = 1e-8
+#: grids of at least this many nodes solve their frictionless start on a second thread
+#: while the coarse frictional levels solve (:func:`_first_solves`). Measured (frictional
+#: solve, alternated pairs against one thread, medians): issue-11 case 61 x 61 1.07x, 121 x
+#: 121 1.06x; section 11 at 129 x 129 1.09x, 257 x 257 1.10x; but the example's 41 x 41
+#: (1681 nodes, a 21 x 21 coarse level) 0.84x: there the two threads mostly wait for the GIL
+OVERLAP_FROM = 3000
 
 
 def solve_friction(problem: Problem, friction: Friction, progress: Callable[[str], None] | None = None,
@@ -122,18 +129,16 @@ def solve_rolling(ops: RollingOperators, profile, arm, ell, radius: float, speed
     g = ops.grid
     size = g.nodes_x * g.nodes_y
     arm, ell = np.asarray(arm, float).ravel(), np.asarray(ell, float).ravel()
-    # the frictionless start, by dense LU up to the frictional solve's own limit (3
-    # unknowns a node), GMRES above (at 61 x 61, 1977 contact nodes, dense LU took 0.9 s
-    # of a 1.5 s solve, GMRES 0.05 s)
-    if normal is None or normal.grid.shape != g.shape:
-        normal = solve_normal(ops.op("ww"), profile, load=load, indentation=indentation,
-                              dense_limit=friction.dense_limit // 3, rtol=START_RTOL if friction.mu > 0 else 1e-11)
-    N0 = normal.force.ravel()
+    profile = np.asarray(profile, float)
     cons = constraint(friction.mode, arm, ell, radius)
-    check_reachable(friction.mode, friction.mu, cons, N0)
-    setup = RollingSetup(ops=ops, profile=np.asarray(profile, float).ravel(), arm=arm, ell=ell, radius=radius,
+    setup = RollingSetup(ops=ops, profile=profile.ravel(), arm=arm, ell=ell, radius=radius,
                          speed=speed, mu=friction.mu, load=load, indentation=indentation, omega=friction.omega,
                          constraint=cons)
+    if normal is None or normal.grid.shape != g.shape:
+        normal = None
+    normal, coarse = _first_solves(setup, friction, normal, progress)
+    N0 = normal.force.ravel()
+    check_reachable(friction.mode, friction.mu, cons, N0)
     if friction.mu == 0:
         zero = np.zeros(size)
         return _result(setup, friction, N0, zero, zero, normal.indentation,
@@ -143,9 +148,8 @@ def solve_rolling(ops: RollingOperators, profile, arm, ell, radius: float, speed
     solves = LinearSolves(friction.dense_limit)
     saturation = saturation_creepage(N0 > 0, g.shape, g.spacing_x, friction.mu, radius)
     starts = [frictionless_start(N0, ell, speed, friction, saturation)]
-    coarse = _from_coarse_grid(setup, friction, N0, progress, normal.coarse)
     if coarse is not None:
-        starts.insert(0, coarse)
+        starts.insert(0, coarse_start(coarse, g.shape, N0, friction.mu))
     try:
         for i, start in enumerate(starts):
             try:
@@ -165,13 +169,41 @@ def solve_rolling(ops: RollingOperators, profile, arm, ell, radius: float, speed
     return _finish(setup, friction, out, solves)
 
 
-def _from_coarse_grid(setup: RollingSetup, friction: Friction, N0, progress, normal=None):
-    """Start sets from the same problem on every other node (recursively, as the
-    frictionless solver's start, :func:`bem.frictional.starts.coarse_start`): most of
-    the stick/slip border is then in place and the fine grid needs a few iterations for
-    the rest and for the slip directions. ``None`` below 625 nodes, on even-sized grids
-    and when the coarse solve fails. ``normal``: the coarse grid's frictionless solution
-    when known (the fine frictionless solve's ``coarse``, the same solve)."""
+def _first_solves(setup: RollingSetup, friction: Friction, normal: NormalContact | None, progress):
+    """The frictionless solution of the grid (``normal`` when known; GMRES to
+    :data:`START_RTOL`, or dense LU up to the frictional solve's own limit, 3 unknowns a
+    node) and, with friction, the frictional solution on every other node
+    (:func:`_coarse_solution`; ``None`` without). Both start from the frictionless solution
+    on every other node; when the first is still to solve it runs on a second thread
+    while the coarse levels solve (the transforms and products release the GIL)."""
+    ops, mu = setup.ops, friction.mu
+    g = ops.grid
+    ww, profile = ops.op("ww"), setup.profile.reshape(g.shape)
+    kw = dict(load=setup.load, indentation=setup.indentation, dense_limit=friction.dense_limit // 3,
+              rtol=START_RTOL if mu > 0 else 1e-11)
+    if normal is None and mu > 0 and g.nodes_x * g.nodes_y >= OVERLAP_FROM:
+        below = coarse_solution(ww, profile, **kw)
+        if below is not None:
+            with ThreadPoolExecutor(1, thread_name_prefix="frictionless-start") as pool:
+                job = pool.submit(solve_normal, ww, profile, coarse=below, **kw)
+                try:
+                    coarse = _coarse_solution(setup, friction, progress, below)
+                finally:
+                    normal = job.result()
+            return normal, coarse
+    if normal is None:
+        normal = solve_normal(ww, profile, **kw)
+    return normal, (_coarse_solution(setup, friction, progress, normal.coarse) if mu > 0 else None)
+
+
+def _coarse_solution(setup: RollingSetup, friction: Friction, progress, normal=None) -> FrictionalContact | None:
+    """The same problem on every other node (recursively, as the frictionless solver's
+    start; :func:`bem.frictional.starts.coarse_start` turns it into the fine grid's start
+    sets): most of the stick/slip border is then in place and the fine grid needs a few
+    iterations for the rest and for the slip directions. ``None`` below 625 nodes, on
+    even-sized grids and when the coarse solve fails. ``normal``: the coarse grid's
+    frictionless solution when known (the fine frictionless solve's ``coarse``, the same
+    solve)."""
     ops = setup.ops
     Ky, Kx = ops.grid.shape
     coarse = coarse_grid(ops.grid)
@@ -183,12 +215,12 @@ def _from_coarse_grid(setup: RollingSetup, friction: Friction, N0, progress, nor
 
     label = f"coarse {coarse.nodes_x} x {coarse.nodes_y}: "
     try:
-        res = solve_rolling(ops.coarse(coarse), fine(setup.profile), fine(setup.arm), fine(setup.ell), setup.radius,
-                            setup.speed, friction, load=setup.load, indentation=setup.indentation,
-                            progress=(lambda m: progress(label + m)) if progress else None, settle=COARSE_SETTLE, normal=normal)
+        return solve_rolling(ops.coarse(coarse), fine(setup.profile), fine(setup.arm), fine(setup.ell), setup.radius,
+                             setup.speed, friction, load=setup.load, indentation=setup.indentation,
+                             progress=(lambda m: progress(label + m)) if progress else None, settle=COARSE_SETTLE,
+                             normal=normal)
     except ContactError:
         return None
-    return coarse_start(res, (Ky, Kx), N0, friction.mu)
 
 
 def _finish(setup: RollingSetup, friction: Friction, out: ActiveSetResult, solves: LinearSolves):

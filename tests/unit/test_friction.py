@@ -326,7 +326,7 @@ def test_coarse_grid_start_ends_on_the_same_state(monkeypatch):
     lines = []
     coarse, _ = solve_friction(p, Friction(0.2), kernels=kern, energy=False, progress=lines.append)
     assert any(line.startswith("coarse 21 x 21: friction") for line in lines)
-    monkeypatch.setattr(frictional_solve, "_from_coarse_grid", lambda *args: None)
+    monkeypatch.setattr(frictional_solve, "_coarse_solution", lambda *args: None)
     direct, _ = solve_friction(p, Friction(0.2), kernels=kern, energy=False)
     assert np.array_equal(coarse.stick, direct.stick) and np.array_equal(coarse.contact, direct.contact)
     np.testing.assert_allclose(coarse.force_x, direct.force_x, rtol=0, atol=1e-9 * direct.force.max())

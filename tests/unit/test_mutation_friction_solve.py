@@ -295,7 +295,7 @@ def test_coarse_start_runs_and_ends_on_the_direct_state(big_kernels, monkeypatch
     (cres, shape, N0, mu), = seen
     assert cres.grid.shape == (13, 13) and shape == (25, 25) and mu == 0.3 and N0.shape == (625,)
     assert cres.load == pytest.approx(20.0, rel=1e-12)
-    monkeypatch.setattr(fs, "_from_coarse_grid", lambda *a: None)
+    monkeypatch.setattr(fs, "_coarse_solution", lambda *a: None)
     direct, _ = solve_friction(p, friction, kernels=big_kernels, energy=False)
     assert np.array_equal(direct.stick, res.stick) and np.array_equal(direct.contact, res.contact)
     np.testing.assert_allclose(direct.force_x, res.force_x, rtol=0, atol=1e-9 * res.force.max())
@@ -335,6 +335,56 @@ def test_the_coarse_level_reuses_the_fine_frictionless_solve_s_coarse_solution(b
     normals.clear(), rtols.clear()
     solve_friction(problem(grid=BIG), Friction(0.0, "towed"), kernels=big_kernels, energy=False)
     assert rtols == [1e-11]
+
+
+def test_the_frictionless_start_on_a_second_thread_changes_nothing(big_kernels, monkeypatch):
+    """From OVERLAP_FROM nodes on, the fine frictionless solve runs on a second thread
+    while the coarse levels solve, from the coarse frictionless solution solved first
+    (once: the coarse level is handed it): the result is bit for bit the one-thread
+    result; below OVERLAP_FROM everything runs on the caller's thread."""
+    import threading
+
+    import bem.frictional.solve as fs
+
+    real_normal = fs.solve_normal
+    calls = []
+
+    def spy(op, *args, **kw):
+        calls.append((op.grid.shape, threading.current_thread() is threading.main_thread(), kw.get("coarse")))
+        return real_normal(op, *args, **kw)
+
+    monkeypatch.setattr(fs, "solve_normal", spy)
+    friction = Friction(0.3)
+    one, _ = solve_friction(problem(grid=BIG), friction, kernels=big_kernels, energy=False)
+    assert [c[:2] for c in calls] == [((25, 25), True)] and fs.OVERLAP_FROM > 625
+    calls.clear()
+    monkeypatch.setattr(fs, "OVERLAP_FROM", 625)
+    two, _ = solve_friction(problem(grid=BIG), friction, kernels=big_kernels, energy=False)
+    (shape, main, coarse), = calls
+    assert shape == (25, 25) and not main and coarse is not None and coarse.grid.shape == (13, 13)
+    for a, b in ((one.force, two.force), (one.force_x, two.force_x), (one.force_y, two.force_y)):
+        np.testing.assert_array_equal(a, b)
+    assert np.array_equal(one.stick, two.stick) and one.record == two.record
+
+
+def test_an_error_on_the_second_thread_reaches_the_caller(big_kernels, monkeypatch):
+    """A fine frictionless solve that fails on the second thread raises from
+    ``solve_friction`` once the coarse levels are done, as on one thread."""
+    import bem.frictional.solve as fs
+
+    real_normal = fs.solve_normal
+
+    def fails(op, *args, **kw):
+        if op.grid.shape == (25, 25):
+            raise ContactAtEdge("planted on the fine grid")
+        return real_normal(op, *args, **kw)
+
+    monkeypatch.setattr(fs, "OVERLAP_FROM", 625)
+    monkeypatch.setattr(fs, "solve_normal", fails)
+    lines = []
+    with pytest.raises(ContactAtEdge, match="planted on the fine grid"):
+        solve_friction(problem(grid=BIG), Friction(0.3), kernels=big_kernels, energy=False, progress=lines.append)
+    assert any(ln.startswith("coarse 13 x 13: friction") for ln in lines)
 
 
 def test_coarse_solve_that_fails_is_skipped(big_kernels, monkeypatch):
