@@ -277,6 +277,14 @@ _POOL: ThreadPoolExecutor | None = None
 os.register_at_fork(after_in_child=_forget_pool)
 
 
+def _runs(system: SetSystem) -> tuple[np.ndarray, np.ndarray]:
+    """The runs of ``system``'s contact nodes along grid rows: their first nodes (indices
+    into the contact) and lengths."""
+    row, col = system.Cj, system.Ci
+    starts = np.flatnonzero(np.r_[True, (np.diff(row) != 0) | (np.diff(col) != 1)])
+    return starts, np.diff(np.r_[starts, system.nC])
+
+
 def _bordered(system: SetSystem, forces, kept=None):
     """The preconditioner of the whole system from ``forces``, that of its force rows:
     ``d`` (load control) and ``Omega`` (when free) eliminated by their Schur complement
@@ -364,11 +372,24 @@ class LinePreconditioner:
             self._ops, self._columns, self._schur = ops, (np.zeros(0, int), None), (None, None)
         return self.inverses
 
+    def prepare(self, system: SetSystem) -> None:
+        """Build ahead what :meth:`attach` reads for ``system``'s contact set alone (the
+        row inverses for its longest run, the row filter of its box), e.g. on an idle
+        thread."""
+        lens = _runs(system)[1]
+        self._row_inverses(system.ops, int(lens.max()))
+        self._row_filter(system)
+
+    def _row_filter(self, system: SetSystem):
+        """The row filter's spectra on ``system``'s box (``None`` when off)."""
+        if not self.filter_power:
+            return None
+        cplx = np.complex64 if self.dtype == np.float32 else np.complex128
+        return system.box.row_filter(self.filter_power, cplx, long=self.filter_long, waves=FILTER_WAVES)
+
     def attach(self, system: SetSystem) -> None:
         ops, nC, n = system.ops, system.nC, system.n
-        row, col = system.Cj, system.Ci
-        starts = np.flatnonzero(np.r_[True, (np.diff(row) != 0) | (np.diff(col) != 1)])
-        lens = np.diff(np.r_[starts, nC])
+        starts, lens = _runs(system)
         inv = self._row_inverses(ops, int(lens.max()))
         M, R = inv.M, starts.size
         run = np.repeat(np.arange(R), lens)
@@ -376,7 +397,6 @@ class LinePreconditioner:
         place = np.zeros(R * M, bool)
         place[at] = True
         spread = (np.arange(3)[:, None] * (R * M) + at).ravel()  # N, S_x, S_y into (3, R, M)
-        cplx = np.complex64 if self.dtype == np.float32 else np.complex128
         spec_n = inv.operand(0, lens, self.dtype)
         spec_t = np.concatenate([inv.operand(b, lens, self.dtype) for b in (1, 2)], 0 if inv.matrices is not None else 1)
         groups = self._woodbury(system, inv, starts, lens, run)
@@ -388,9 +408,7 @@ class LinePreconditioner:
         ex, ey, kk = (a.astype(dt) for a in (system.dir_x, system.dir_y, system.slope))
         size = spec_n.nbytes + spec_t.nbytes
         two = self.threads and (os.cpu_count() or 1) > 1 and size >= THREAD_FROM
-        box, spectra = system.box, None
-        if self.filter_power:
-            spectra = box.row_filter(self.filter_power, cplx, long=self.filter_long, waves=FILTER_WAVES)
+        box, spectra = system.box, self._row_filter(system)
 
         def correct(Z, c, qs):
             for (members, _, _, _, Y), q in zip(groups, qs):

@@ -20,7 +20,7 @@ from .active_set import ActiveSetResult, LinearSolves, run_active_set
 from .loading import check_reachable, constraint
 from .operators import RollingOperators
 from .starts import coarse_start, continuation, frictionless_start, saturation_creepage
-from .system import RollingSetup
+from .system import RollingSetup, SetState, SetSystem
 
 __all__ = ["solve_friction", "solve_rolling", "COARSE_SETTLE", "START_RTOL", "OVERLAP_FROM"]
 
@@ -136,7 +136,8 @@ def solve_rolling(ops: RollingOperators, profile, arm, ell, radius: float, speed
                          constraint=cons)
     if normal is None or normal.grid.shape != g.shape:
         normal = None
-    normal, coarse = _first_solves(setup, friction, normal, progress)
+    solves = LinearSolves(friction.dense_limit)
+    normal, coarse = _first_solves(setup, friction, normal, progress, solves)
     N0 = normal.force.ravel()
     check_reachable(friction.mode, friction.mu, cons, N0)
     if friction.mu == 0:
@@ -145,7 +146,6 @@ def solve_rolling(ops: RollingOperators, profile, arm, ell, radius: float, speed
                        friction.omega if friction.omega is not None else math.nan,
                        np.zeros(size, bool), (), "dense", 0)
 
-    solves = LinearSolves(friction.dense_limit)
     saturation = saturation_creepage(N0 > 0, g.shape, g.spacing_x, friction.mu, radius)
     starts = [frictionless_start(N0, ell, speed, friction, saturation)]
     if coarse is not None:
@@ -169,13 +169,16 @@ def solve_rolling(ops: RollingOperators, profile, arm, ell, radius: float, speed
     return _finish(setup, friction, out, solves)
 
 
-def _first_solves(setup: RollingSetup, friction: Friction, normal: NormalContact | None, progress):
+def _first_solves(setup: RollingSetup, friction: Friction, normal: NormalContact | None, progress,
+                  solves: LinearSolves):
     """The frictionless solution of the grid (``normal`` when known; GMRES to
     :data:`START_RTOL`, or dense LU up to the frictional solve's own limit, 3 unknowns a
     node) and, with friction, the frictional solution on every other node
     (:func:`_coarse_solution`; ``None`` without). Both start from the frictionless solution
     on every other node; when the first is still to solve it runs on a second thread
-    while the coarse levels solve (the transforms and products release the GIL)."""
+    while the coarse levels solve (the transforms and products release the GIL), and
+    that thread then builds what ``solves`` will need on its contact set
+    (:meth:`LinearSolves.prepare`)."""
     ops, mu = setup.ops, friction.mu
     g = ops.grid
     ww, profile = ops.op("ww"), setup.profile.reshape(g.shape)
@@ -185,7 +188,7 @@ def _first_solves(setup: RollingSetup, friction: Friction, normal: NormalContact
         below = coarse_solution(ww, profile, **kw)
         if below is not None:
             with ThreadPoolExecutor(1, thread_name_prefix="frictionless-start") as pool:
-                job = pool.submit(solve_normal, ww, profile, coarse=below, **kw)
+                job = pool.submit(_frictionless_prepared, setup, solves, ww, profile, below, kw)
                 try:
                     coarse = _coarse_solution(setup, friction, progress, below)
                 finally:
@@ -194,6 +197,18 @@ def _first_solves(setup: RollingSetup, friction: Friction, normal: NormalContact
     if normal is None:
         normal = solve_normal(ww, profile, **kw)
     return normal, (_coarse_solution(setup, friction, progress, normal.coarse) if mu > 0 else None)
+
+
+def _frictionless_prepared(setup: RollingSetup, solves: LinearSolves, ww, profile, below, kw) -> NormalContact:
+    """:func:`solve_normal` from the coarse solution ``below``, then ``solves`` prepared
+    for the system of its contact set (all in stick)."""
+    normal = solve_normal(ww, profile, coarse=below, **kw)
+    contact = normal.force.ravel() > 0
+    if contact.any():
+        zero = np.zeros(contact.size)
+        solves.prepare(SetSystem(setup, SetState(contact=contact, stick=contact, direction=np.zeros((zero.size, 2)),
+                                                 slope=zero)))
+    return normal
 
 
 def _coarse_solution(setup: RollingSetup, friction: Friction, progress, normal=None) -> FrictionalContact | None:

@@ -341,7 +341,8 @@ def test_the_frictionless_start_on_a_second_thread_changes_nothing(big_kernels, 
     """From OVERLAP_FROM nodes on, the fine frictionless solve runs on a second thread
     while the coarse levels solve, from the coarse frictionless solution solved first
     (once: the coarse level is handed it): the result is bit for bit the one-thread
-    result; below OVERLAP_FROM everything runs on the caller's thread."""
+    result, the fine solves' preconditioner prepared there on the frictionless contact;
+    below OVERLAP_FROM everything runs on the caller's thread."""
     import threading
 
     import bem.frictional.solve as fs
@@ -351,17 +352,32 @@ def test_the_frictionless_start_on_a_second_thread_changes_nothing(big_kernels, 
 
     def spy(op, *args, **kw):
         calls.append((op.grid.shape, threading.current_thread() is threading.main_thread(), kw.get("coarse")))
-        return real_normal(op, *args, **kw)
+        normals.append(real_normal(op, *args, **kw))
+        return normals[-1]
 
+    normals = []
     monkeypatch.setattr(fs, "solve_normal", spy)
-    friction = Friction(0.3)
+    friction = Friction(0.3, dense_limit=0)  # GMRES and the line preconditioner on every level
     one, _ = solve_friction(problem(grid=BIG), friction, kernels=big_kernels, energy=False)
     assert [c[:2] for c in calls] == [((25, 25), True)] and fs.OVERLAP_FROM > 625
     calls.clear()
     monkeypatch.setattr(fs, "OVERLAP_FROM", 625)
+    prepared = []
+    real_prepare = fs.LinearSolves.prepare
+
+    def prepare(self, system):
+        inverses = self.lines.inverses
+        real_prepare(self, system)
+        prepared.append((threading.current_thread() is threading.main_thread(), system.nC, inverses,
+                         self.lines.inverses, system.stick.all()))
+
+    monkeypatch.setattr(fs.LinearSolves, "prepare", prepare)
     two, _ = solve_friction(problem(grid=BIG), friction, kernels=big_kernels, energy=False)
     (shape, main, coarse), = calls
     assert shape == (25, 25) and not main and coarse is not None and coarse.grid.shape == (13, 13)
+    # the fine grid's solves prepared on the same thread, on the frictionless contact, all in stick
+    (main, nC, before, after, all_stick), = prepared
+    assert not main and before is None and after is not None and all_stick and nC == (normals[-1].force > 0).sum()
     for a, b in ((one.force, two.force), (one.force_x, two.force_x), (one.force_y, two.force_y)):
         np.testing.assert_array_equal(a, b)
     assert np.array_equal(one.stick, two.stick) and one.record == two.record
