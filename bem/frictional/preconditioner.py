@@ -76,12 +76,15 @@ FILTER_POWER = 0.5
 #: such a mode on aggregates of 8 x 8 nodes), and away from the run ends the exact
 #: correction is power 1; the run ends' disturbance is in the short waves. Measured (GMRES
 #: iterations from zero to 1e-10 |b| on the converged fine states, power 1/2 throughout ->
-#: 0.8 on waves of up to about 5 a box; the same for 0.7 within 1-2): issue-11 case
-#: 61 x 61 29 -> 25, 121 x 121 33 -> 27; section 11 at 129 x 129 31 -> 26, 257 x 257
-#: 38 -> 33, 513 x 513 53 -> 45. Whole solves (fine-grid active-set / GMRES iterations,
-#: ``long`` 0.7 / 0.8 / 0.9 / 1 at 5 waves): 61 x 61 5/65, 5/62, 5/61, 5/64 against 5/73;
-#: 121 x 121 5/76, 6/74, 6/72, 7/77 against 5/84; 257 x 257 7/90, 10/128, 8/93, 10/141
-#: against 8/112 (the loose solves' error moves the active set); 0.7 kept
+#: ``long`` 0.7 / 0.8 / 0.9 / 1): issue-11 case 61 x 61 29 -> 26 / 25 / 25 / 25, 121 x 121
+#: 33 -> 28 / 27 / 28 / 29; section 11 at 129 x 129 31 -> 26 (all four), 257 x 257 38 ->
+#: 34 / 33 / 34 / 34, 513 x 513 53 -> 45 / 45 / 46 / 48. In whole solves the loose solves'
+#: error moves the active set's path, so the choice among them was made there (fine-grid
+#: active-set / GMRES iterations, 5 waves taken over the contact's diameter in a first
+#: trial; ``long`` 0.7 / 0.8 / 0.9 / 1 against 1/2 throughout): 61 x 61 5/65, 5/62, 5/61,
+#: 5/64 against 5/73; 121 x 121 5/76, 6/74, 6/72, 7/77 against 5/84; 257 x 257 7/90,
+#: 10/128, 8/93, 10/141 against 8/112. With 0.7 over the box: 5/65, 5/75, section 11 at
+#: 129 x 129 7/70 (against 7/86), 257 x 257 7/92, 513 x 513 10/190 (against 9/193)
 FILTER_LONG = 0.7
 #: waves across the contact's box at which the row filter's power is ``1/e`` of the way
 #: from :data:`FILTER_LONG` to :data:`FILTER_POWER`
