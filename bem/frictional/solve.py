@@ -181,7 +181,7 @@ def _first_solves(setup: RollingSetup, friction: Friction, normal: NormalContact
     (:meth:`LinearSolves.prepare`)."""
     ops, mu = setup.ops, friction.mu
     g = ops.grid
-    ww, profile = ops.op("ww"), setup.profile.reshape(g.shape)
+    ww, profile = ops.op("ww"), setup.profile
     kw = dict(load=setup.load, indentation=setup.indentation, dense_limit=friction.dense_limit // 3,
               rtol=START_RTOL if mu > 0 else 1e-11)
     if normal is None and mu > 0 and g.nodes_x * g.nodes_y >= OVERLAP_FROM:

@@ -314,7 +314,10 @@ def test_the_coarse_level_reuses_the_fine_frictionless_solve_s_coarse_solution(b
         out = real_normal(op, *args, **kw)
         normals.append(out)
         rtols.append(kw["rtol"])
+        limits.append(kw["dense_limit"])
         return out
+
+    limits = []
 
     def spy(ops, *args, normal=None, **kw):
         handed.append((ops.grid.shape, normal))
@@ -325,6 +328,7 @@ def test_the_coarse_level_reuses_the_fine_frictionless_solve_s_coarse_solution(b
     friction = Friction(0.3)
     res, _ = solve_friction(problem(grid=BIG), friction, kernels=big_kernels, energy=False)
     assert [n.grid.shape for n in normals] == [(25, 25)] and rtols == [fs.START_RTOL] == [1e-8]
+    assert limits == [friction.dense_limit // 3] == [200]  # 3 unknowns a node with friction
     assert [shape for shape, _ in handed] == [(25, 25), (13, 13)]
     assert handed[0][1] is None and handed[1][1] is normals[0].coarse is not None
     own = real_normal(ComplianceOperator(normals[0].coarse.grid, big_kernels["ww"][::2, ::2]),
@@ -332,9 +336,9 @@ def test_the_coarse_level_reuses_the_fine_frictionless_solve_s_coarse_solution(b
                       rtol=1e-8)
     np.testing.assert_array_equal(own.force, normals[0].coarse.force)
     # without friction the frictionless solve is the result: solve_normal's own tolerance
-    normals.clear(), rtols.clear()
+    normals.clear(), rtols.clear(), handed.clear()
     solve_friction(problem(grid=BIG), Friction(0.0, "towed"), kernels=big_kernels, energy=False)
-    assert rtols == [1e-11]
+    assert rtols == [1e-11] and [shape for shape, _ in handed] == [(25, 25)]  # no coarse frictional level
 
 
 def test_the_frictionless_start_on_a_second_thread_changes_nothing(big_kernels, monkeypatch):
@@ -352,8 +356,12 @@ def test_the_frictionless_start_on_a_second_thread_changes_nothing(big_kernels, 
 
     def spy(op, *args, **kw):
         calls.append((op.grid.shape, threading.current_thread() is threading.main_thread(), kw.get("coarse")))
+        if not calls[-1][1]:
+            names.append(threading.current_thread().name)
         normals.append(real_normal(op, *args, **kw))
         return normals[-1]
+
+    names = []
 
     normals = []
     monkeypatch.setattr(fs, "solve_normal", spy)
@@ -375,9 +383,18 @@ def test_the_frictionless_start_on_a_second_thread_changes_nothing(big_kernels, 
     two, _ = solve_friction(problem(grid=BIG), friction, kernels=big_kernels, energy=False)
     (shape, main, coarse), = calls
     assert shape == (25, 25) and not main and coarse is not None and coarse.grid.shape == (13, 13)
+    assert names == ["frictionless-start_0"]
     # the fine grid's solves prepared on the same thread, on the frictionless contact, all in stick
     (main, nC, before, after, all_stick), = prepared
     assert not main and before is None and after is not None and all_stick and nC == (normals[-1].force > 0).sum()
+    # without friction the frictionless solve is the result: on the caller's thread, no
+    # coarse frictional level
+    calls.clear()
+    levels = []
+    real_coarse = fs._coarse_solution
+    monkeypatch.setattr(fs, "_coarse_solution", lambda *a: levels.append(a) or real_coarse(*a))
+    solve_friction(problem(grid=BIG), Friction(0.0, "towed"), kernels=big_kernels, energy=False)
+    assert [c[:2] for c in calls] == [((25, 25), True)] and levels == []
     for a, b in ((one.force, two.force), (one.force_x, two.force_x), (one.force_y, two.force_y)):
         np.testing.assert_array_equal(a, b)
     assert np.array_equal(one.stick, two.stick) and one.record == two.record
