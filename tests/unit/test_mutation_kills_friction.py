@@ -674,8 +674,9 @@ def test_line_preconditioner_keeps_its_row_inverses_while_they_fit(kernels, monk
         (op.dtype, v.dtype)) or solve(self, op, v, threads))
     box = system.box
     row_filter = box.row_filter
-    monkeypatch.setattr(box, "row_filter", lambda power, dtype, **blend: seen.append(np.dtype(dtype)) or row_filter(
-        power, dtype, **blend))
+    blends = []
+    monkeypatch.setattr(box, "row_filter", lambda power, dtype, **blend: blends.append(blend) or seen.append(
+        np.dtype(dtype)) or row_filter(power, dtype, **blend))
     for dense_upto in (0, 96):
         monkeypatch.setattr(P, "DENSE_UPTO", dense_upto)
         seen.clear()
@@ -683,6 +684,11 @@ def test_line_preconditioner_keeps_its_row_inverses_while_they_fit(kernels, monk
         system.precondition(np.ones(system.n))
         real = np.complex64 if dense_upto == 0 else np.float32
         assert seen == [np.dtype(np.complex64), (real, np.float32), (real, np.float32)], seen
+    # the filter blended as the module says, its width read when attaching
+    assert blends[-1] == {"long": P.FILTER_LONG, "waves": P.FILTER_WAVES}
+    monkeypatch.setattr(P, "FILTER_WAVES", 3.0)
+    P.LinePreconditioner(filter_long=0.9).attach(system)
+    assert blends[-1] == {"long": 0.9, "waves": 3.0}
 
 
 def _bordered_line_blocks(system):

@@ -76,6 +76,16 @@ def test_the_long_wave_power_blends_into_the_short_wave_power(kernels):
     row = np.log(np.abs(mid[0, 0, 1:])) / np.log(np.abs(one[0, 0, 1:]))
     assert np.all(np.diff(row[np.abs(np.log(np.abs(one[0, 0, 1:]))) > 1e-3]) <= 1e-9)
     assert ops.row_filter(0.5, long=0.8, waves=3.0) is mid  # kept
+    # the Gaussian's width: on the k_y = 0 row, one wave-width from zero the exponent has
+    # come 1 - 1/e of the way to p, two widths 1 - e^-4
+    Ey, width = ops.op("ww").embedding
+    n1 = 3 * GRID.nodes_x / width  # the waves across the grid at k_x index 3
+    at = ops.row_filter(0.5, long=0.8, waves=n1)
+    for i, want in ((3, 0.5 + 0.3 / np.e), (6, 0.5 + 0.3 * np.exp(-4))):
+        got = np.log(np.abs(at[:, 0, i])) / np.log(np.abs(one[:, 0, i]))
+        np.testing.assert_allclose(got, want, rtol=1e-9)
+    # the default width is the preconditioner's
+    assert ops.row_filter(0.5, long=0.8) is ops.row_filter(0.5, long=0.8, waves=preconditioner.FILTER_WAVES)
 
 
 def test_filter_on_is_a_convolution_on_the_nodes(kernels):
