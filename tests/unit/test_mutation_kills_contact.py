@@ -227,6 +227,57 @@ def test_an_indentation_below_every_coarse_node_falls_back_to_the_overlap(elasti
     assert r.indentation == d and r.load > 0 and r.coarse is None
 
 
+def test_coarse_solution_is_the_problem_on_every_other_node(elastic_mid, rolling_small, monkeypatch):
+    """``coarse_solution``: ``solve_normal`` on the coarse grid with the caller's load,
+    dense limit and tolerance (the defaults: solve_normal's), passed on to every level;
+    ``None`` below 625 nodes and when the indentation reaches no coarse node (a coarse
+    node exactly at ``d`` is not reached); ``solve_normal(coarse=)`` starts from a given
+    coarse solution instead of solving it again, and ignores one of another grid."""
+    import bem.contact as contact
+
+    op = elastic_mid
+    s, _, _ = _profile(MID)
+    sub = ComplianceOperator(coarse_grid(MID), op.kernel[::2, ::2])
+    want = solve_normal(sub, s[::2, ::2], load=1.0)
+    got = contact.coarse_solution(op, s, load=1.0)
+    np.testing.assert_array_equal(got.force, want.force)
+    assert got.record == want.record and got.grid == coarse_grid(MID)
+    assert contact.coarse_solution(rolling_small, _profile(SMALL)[0], load=1.0) is None  # 441 nodes
+    import inspect
+
+    mine, theirs = (inspect.signature(f).parameters for f in (contact.coarse_solution, solve_normal))
+    assert all(mine[k].default == theirs[k].default for k in ("load", "indentation", "dense_limit", "rtol"))
+    # the caller's dense limit and tolerance reach the coarse level
+    seen = []
+    real = contact.solve_normal
+    monkeypatch.setattr(contact, "solve_normal", lambda o, p, **kw: seen.append(
+        (o.grid.shape, kw["dense_limit"], kw["rtol"])) or real(o, p, **kw))
+    contact.coarse_solution(op, s, load=1.0, dense_limit=7, rtol=1e-9)
+    assert seen == [((23, 23), 7, 1e-9)]
+    seen.clear()
+    real(op, s, load=1.0, dense_limit=7, rtol=1e-9)
+    assert seen == [((23, 23), 7, 1e-9)]
+    # a given coarse solution: no coarse solve, the same result; one of another grid ignored
+    seen.clear()
+    r = real(op, s, load=1.0, coarse=want)
+    assert seen == [] and r.coarse is want
+    ref = real(op, s, load=1.0)
+    np.testing.assert_array_equal(r.force, ref.force)
+    seen.clear()
+    real(op, s, load=1.0, coarse=ref)
+    assert seen == [((23, 23), contact.DENSE_LIMIT, 1e-11)]
+    # an indentation exactly at the lowest coarse node reaches none (23 x 23: the centre
+    # node is not a coarse node): no coarse level, and the fine solve goes on
+    g = Grid.centred((0.5e-3, 0.5e-3), (0.2, 0.2), (200, 200), (5.5e-3, 5.5e-3))
+    sg, _, _ = _profile(g)
+    assert g.shape == (23, 23) and sg[11, 11] == 0
+    lowest = float(sg[::2, ::2].min())
+    og = ComplianceOperator(g, influence_kernels(g, Layer(5e-3, Elastic(3e6)), 0.0)["ww"])
+    assert contact.coarse_solution(og, sg, indentation=lowest) is None
+    rg = real(og, sg, indentation=lowest)
+    assert rg.coarse is None and rg.load > 0
+
+
 @pytest.mark.parametrize("kw, message", [
     ({}, r"^give exactly one of load \(N\) and indentation \(m\)$"),
     ({"load": 1.0, "indentation": 1e-5}, r"^give exactly one of load \(N\) and indentation \(m\)$"),
