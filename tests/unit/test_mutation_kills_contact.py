@@ -266,11 +266,11 @@ def test_coarse_solution_is_the_problem_on_every_other_node(elastic_mid, rolling
     seen.clear()
     real(op, s, load=1.0, coarse=ref)
     assert seen == [((23, 23), contact.DENSE_LIMIT, 1e-11)]
-    # an indentation exactly at the lowest coarse node reaches none (23 x 23: the centre
+    # an indentation exactly at the lowest coarse node reaches none (27 x 27: the centre
     # node is not a coarse node): no coarse level, and the fine solve goes on
-    g = Grid.centred((0.5e-3, 0.5e-3), (0.2, 0.2), (200, 200), (5.5e-3, 5.5e-3))
+    g = Grid.centred((0.5e-3, 0.5e-3), (0.2, 0.2), (200, 200), (6.5e-3, 6.5e-3))
     sg, _, _ = _profile(g)
-    assert g.shape == (23, 23) and sg[11, 11] == 0
+    assert g.shape == (27, 27) and coarse_grid(g) is not None and sg[13, 13] == 0
     lowest = float(sg[::2, ::2].min())
     og = ComplianceOperator(g, influence_kernels(g, Layer(5e-3, Elastic(3e6)), 0.0)["ww"])
     assert contact.coarse_solution(og, sg, indentation=lowest) is None
