@@ -342,18 +342,18 @@ class LinePreconditioner:
     ``threads`` an application whose operands take :data:`THREAD_FROM` bytes or more, and
     the build's columns and inversions, run on two threads. ``filter_power`` (default
     :data:`FILTER_POWER`, read at construction; 0: the lines alone) and ``filter_long``
-    (:data:`FILTER_LONG`; ``None``: ``filter_power`` on every wave) set the row filter
-    applied after the lines. The global unknowns (``d``, a free ``Omega``) are eliminated
+    (default ``"module"``: :data:`FILTER_LONG`, read at construction; ``None``:
+    ``filter_power`` on every wave) set the row filter applied after the lines. The global unknowns (``d``, a free ``Omega``) are eliminated
     by their Schur complement (:func:`_bordered`), whose parts are kept while the contact
     set, ``mu`` and the operators repeat.
     """
 
     def __init__(self, dtype=np.float32, threads: bool = True, filter_power: float | None = None,
-                 filter_long: float | None = FILTER_LONG):
+                 filter_long: float | None | str = "module"):
         self.dtype = np.dtype(dtype)
         self.threads = threads
         self.filter_power = FILTER_POWER if filter_power is None else filter_power
-        self.filter_long = filter_long
+        self.filter_long = FILTER_LONG if filter_long == "module" else filter_long
         self.inverses: RowInverses | None = None
         self._ops = None
         self._columns: tuple = (np.zeros(0, int), None)  # (length, place) keys, their columns

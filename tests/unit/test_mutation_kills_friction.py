@@ -689,6 +689,9 @@ def test_line_preconditioner_keeps_its_row_inverses_while_they_fit(kernels, monk
     monkeypatch.setattr(P, "FILTER_WAVES", 3.0)
     P.LinePreconditioner(filter_long=0.9).attach(system)
     assert blends[-1] == {"long": 0.9, "waves": 3.0}
+    monkeypatch.setattr(P, "FILTER_LONG", 0.6)  # read at construction, as FILTER_POWER
+    P.LinePreconditioner().attach(system)
+    assert blends[-1] == {"long": 0.6, "waves": 3.0}
 
 
 def _bordered_line_blocks(system):
