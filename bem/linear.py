@@ -218,6 +218,10 @@ class LinearSolver:
         ``matvec_single`` when it has one (a product in single precision), on Krylov
         vectors kept in single precision (:func:`fgmres`'s ``basis``), the residual at each
         cycle's end on ``matvec``; ``inf``: never.
+    single_start : float
+        A call whose ``rtol`` is below ``single_from`` first reduces its residual by this
+        (-) as a call at ``single_from`` would, then goes on in double precision from the
+        residual left (recomputed by ``matvec``); 0: in double precision throughout.
     what : str
         Names the system in error messages (``"3 x 1977 unknowns of the stick/slip set"``).
 
@@ -231,9 +235,9 @@ class LinearSolver:
 
     def __init__(self, dense_limit: int, rtol: float, *, restart: int = 100, maxiter: int = 100,
                  correction: bool = False, error: type = RuntimeError, floor: float = 0.0,
-                 single_from: float = np.inf):
+                 single_from: float = np.inf, single_start: float = 0.0):
         self.dense_limit, self.rtol, self.correction = dense_limit, rtol, correction
-        self.single_from = single_from
+        self.single_from, self.single_start = single_from, single_start
         self.restart, self.maxiter, self.error = restart, maxiter, error
         self.floor = floor
         self.iterations, self.used_gmres = 0, False
@@ -262,9 +266,18 @@ class LinearSolver:
         b = system.b if guess is None else residual(x0) if residual else system.b - system.matvec(x0)
         ref = b if self.correction else system.b
         tol = max(rtol * float(np.linalg.norm(ref)), self.floor * float(np.linalg.norm(system.b)))
-        inner = getattr(system, "matvec_single", None) if rtol >= self.single_from else None
-        x, ok, its = fgmres(system.matvec, b, prec, tol=tol, restart=self.restart, maxiter=self.maxiter,
-                            inner=inner, basis=np.float64 if inner is None else np.float32)
+        single = getattr(system, "matvec_single", None)
+        inner = single if rtol >= self.single_from else None
+        x = np.zeros(n)
+        if inner is None and single is not None and self.single_start and tol < self.single_start * np.linalg.norm(b):
+            # the first reduction in single precision, the rest in double from its residual
+            x, ok, its = fgmres(system.matvec, b, prec, tol=self.single_start * float(np.linalg.norm(b)),
+                                restart=self.restart, maxiter=self.maxiter, inner=single, basis=np.float32)
+            self.iterations += its
+            b = b - system.matvec(x)
+        dx, ok, its = fgmres(system.matvec, b, prec, tol=tol, restart=self.restart, maxiter=self.maxiter,
+                             inner=inner, basis=np.float64 if inner is None else np.float32)
+        x += dx
         self.iterations += its
         if not ok or not np.isfinite(x).all():
             raise self.error(f"GMRES did not reduce the residual by {rtol:.1e} on {what or f'{n} unknowns'} "

@@ -102,6 +102,7 @@ DENSE_UPTO = 96
 #: this many slip nodes at a time (padded; the transforms' working memory, about 20 kB
 #: a slip node at 513 x 513)
 CHUNK = 2048
+COMPOSE_UPTO = 16
 
 
 def levinson(t: np.ndarray, M: int) -> tuple[np.ndarray, np.ndarray]:
@@ -358,6 +359,7 @@ class LinePreconditioner:
         self._ops = None
         self._columns: tuple = (np.zeros(0, int), None)  # (length, place) keys, their columns
         self._schur: tuple = (None, None)
+        self._blocks: dict = {}
         self.factorised = 0
 
     def _row_inverses(self, ops, longest: int) -> RowInverses:
@@ -372,7 +374,7 @@ class LinePreconditioner:
                 raise FrictionNotConverged(
                     f"the line preconditioner cannot be built on this grid: {exc}; solve by dense LU "
                     "(raise friction.dense_limit above the system's unknowns) or change the grid spacing") from exc
-            self._ops, self._columns, self._schur = ops, (np.zeros(0, int), None), (None, None)
+            self._ops, self._columns, self._schur, self._blocks = ops, (np.zeros(0, int), None), (None, None), {}
         return self.inverses
 
     def prepare(self, system: SetSystem) -> None:
@@ -414,7 +416,7 @@ class LinePreconditioner:
         box, spectra = system.box, self._row_filter(system)
 
         def correct(Z, c, qs):
-            for (members, _, _, _, Y), q in zip(groups, qs):
+            for (members, *_, Y), q in zip(groups, qs):
                 Z[c, members] -= np.matmul(q[:, c, None], Y[:, c])[:, 0]
 
         def forces(r):
@@ -434,10 +436,18 @@ class LinePreconditioner:
                 w = np.concatenate([diag * (ex * z[0] + ey * z[1]) - rs[0],
                                     -ey * rs[0] + ex * rs[1] + kk * (ey * z[0] - ex * z[1]) - rs[1]])
                 qs = []
-                for members, at, where, K, _ in groups:
-                    W = np.zeros(K.shape[:2], dt)
+                for members, at, where, Gi, Hi, e1, e2, _ in groups:
+                    L, P = e1.shape
+                    W = np.zeros((L, 2 * P), dt)
                     W.reshape(-1)[at] = w[where]
-                    qs.append(np.matmul(K, W[:, :, None]).reshape(len(members), 2, -1))
+                    if Hi.shape[1] == 2 * P:  # K^-1 itself
+                        qs.append(np.matmul(Hi, W[:, :, None]).reshape(L, 2, P))
+                        continue
+                    al = W[:, :P] / dt.type(diag)
+                    c = np.matmul(Gi, np.stack([e1 * al, e2 * al], 1)[..., None])[..., 0]
+                    be = np.matmul(Hi, (W[:, P:] + e2 * c[:, 0] - e1 * c[:, 1])[..., None])[..., 0]
+                    uv = np.stack([e1 * al + e2 * be, e2 * al - e1 * be], 1)
+                    qs.append(np.matmul(Gi, uv[..., None])[..., 0])
                 job = _second_thread().submit(correct, Z, 1, qs) if two else None
                 correct(Z, 0, qs)
                 if job is None:
@@ -528,6 +538,7 @@ class LinePreconditioner:
         by_size: dict = {}
         for q in np.flatnonzero(count):
             by_size.setdefault(-(-count[q] // 8) * 8, []).append(q)
+        kept = self._blocks
         groups = []
         for P, members in by_size.items():
             L = len(members)
@@ -536,38 +547,63 @@ class LinePreconditioner:
             s = np.where(valid, first[members][:, None] + np.arange(P), 0)  # their slip indices
             Y = np.empty((L, 2, P, M), self.dtype)  # the columns as rows, 0 on padding
             np.multiply(columns[which[s]].swapaxes(1, 2), valid[:, None, :, None], out=Y)
-            # G[i, j]: row P_i of column P_j of the runs' Toeplitz inverses (0 on padding)
-            loc = np.where(valid, local[s], 0)[:, None, None, :]
-            G = np.take_along_axis(Y, np.broadcast_to(loc, (L, 2, P, P)), 3).swapaxes(2, 3) * valid[:, None, None, :]
-            e1, e2, k1 = (np.where(valid, a[s], 0.0)[:, :, None] for a in (ex, ey, kk))
-            K = np.zeros((L, 2 * P, 2 * P))
-            K[:, :P, :P] = diag * e1 * G[:, 0]
-            K[:, :P, P:] = diag * e2 * G[:, 1]
-            K[:, P:, :P] = k1 * e2 * G[:, 0]
-            K[:, P:, P:] = -k1 * e1 * G[:, 1]
+            loc = np.where(valid, local[s], 0)
+            # the inverses of G_x, G_y depend on the run's length and slip places alone: kept
+            keys = [bytes(np.int64(lens[q])) + loc[i, :p[i]].tobytes() for i, q in enumerate(members)]
+            Gi = np.empty((L, 2, P, P))
+            fresh = np.array([k not in kept for k in keys])
+            for i in np.flatnonzero(~fresh):
+                Gi[i] = kept[keys[i]]
+            G = None
+            if fresh.any():
+                # G[i, j]: row P_i of column P_j of the runs' Toeplitz inverses; the identity
+                # on padding
+                vf = valid[fresh]
+                lf = np.broadcast_to(loc[fresh][:, None, None, :], (vf.shape[0], 2, P, P))
+                G = np.take_along_axis(Y[fresh], lf, 3).swapaxes(2, 3) * vf[:, None, None, :] * vf[:, None, :, None]
+                G[:, :, np.arange(P), np.arange(P)] += ~vf[:, None, :]
+            e1, e2, k1 = (np.where(valid, a[s], 0.0) for a in (ex, ey, kk))
+            both = np.concatenate([valid, valid], 1)
             d = np.arange(P)
-            K[:, P + d, d] -= e2[:, :, 0]
-            K[:, P + d, P + d] += e1[:, :, 0]
-            pad = np.concatenate([~valid, ~valid], 1)
-            K[:, np.arange(2 * P), np.arange(2 * P)] += pad  # padding: identity
-            at = (np.arange(L)[:, None] * 2 * P + np.concatenate([d, P + d])[None, :])[np.concatenate([valid, valid], 1)]
-            where = np.concatenate([s, B.size + s], 1)[np.concatenate([valid, valid], 1)]
-            groups.append([np.array(members), at, where, K, Y])
-        # the Woodbury matrices' inverses, on two threads (about equal flops each)
-        cost = [g[3].shape[0] * g[3].shape[1] ** 3 for g in groups]
-        order = np.argsort(cost)[::-1]
-        halves, load = ([], []), [0, 0]
-        for i in order:
-            k = int(load[1] < load[0])
-            halves[k].append(groups[i])
-            load[k] += cost[i]
+            at = (np.arange(L)[:, None] * 2 * P + np.concatenate([d, P + d])[None, :])[both]
+            where = np.concatenate([s, B.size + s], 1)[both]
+            groups.append({"members": np.array(members), "at": at, "where": where, "Y": Y, "keys": keys,
+                           "Gi": Gi, "fresh": fresh, "G": G, "e1": e1, "e2": e2, "k": np.where(valid, k1, 1.0)})
 
         def invert(part):
             for g in part:
-                g[3] = np.linalg.inv(g[3]).astype(self.dtype)
+                Gi, e1, e2 = g["Gi"], g["e1"], g["e2"]
+                if g["G"] is not None:
+                    Gi[g["fresh"]] = np.linalg.inv(g["G"])
+                # H = diag(k) - E_y G_x^-1 E_y - E_x G_y^-1 E_x (the identity on padding)
+                H = -(e2[:, :, None] * Gi[:, 0] * e2[:, None, :] + e1[:, :, None] * Gi[:, 1] * e1[:, None, :])
+                P = H.shape[1]
+                H[:, np.arange(P), np.arange(P)] += g["k"]
+                Hi = np.linalg.inv(H)
+                if P > COMPOSE_UPTO:
+                    g["H"] = Hi
+                    continue
+                # small runs: K^-1 itself, [[G_x^-1 (E_x + E_y H^-1 D) / d, G_x^-1 E_y H^-1],
+                # [G_y^-1 (E_y - E_x H^-1 D) / d, -G_y^-1 E_x H^-1]], D = E_y G_x^-1 E_x -
+                # E_x G_y^-1 E_y: one product an application
+                D = e2[:, :, None] * Gi[:, 0] * e1[:, None, :] - e1[:, :, None] * Gi[:, 1] * e2[:, None, :]
+                HD, eye = Hi @ D, np.eye(P)
+                top = np.concatenate([(e1[:, :, None] * eye + e2[:, :, None] * HD) / diag, e2[:, :, None] * Hi], 2)
+                bot = np.concatenate([(e2[:, :, None] * eye - e1[:, :, None] * HD) / diag, -e1[:, :, None] * Hi], 2)
+                g["H"] = np.concatenate([Gi[:, 0] @ top, Gi[:, 1] @ bot], 1)
 
+        # on two threads, about equal flops each
+        cost = [g["Y"].shape[0] * g["Y"].shape[2] ** 3 for g in groups]
+        halves, load = ([], []), [0, 0]
+        for i in np.argsort(cost)[::-1]:
+            k = int(load[1] < load[0])
+            halves[k].append(groups[i])
+            load[k] += cost[i]
         job = _second_thread().submit(invert, halves[1]) if self.threads and (os.cpu_count() or 1) > 1 else None
         invert(halves[0] if job is not None else groups)
         if job is not None:
             job.result()
-        return [tuple(g) for g in groups]
+        self._blocks = {key: Gi for g in groups for key, Gi in zip(g["keys"], g["Gi"])}
+        dt = self.dtype
+        return [(g["members"], g["at"], g["where"], g["Gi"].astype(dt), g["H"].astype(dt), g["e1"].astype(dt),
+                 g["e2"].astype(dt), g["Y"]) for g in groups]
