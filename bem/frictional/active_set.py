@@ -67,7 +67,7 @@ SINGLE_FROM = LOOSE_REDUCTION
 #: vectors in single precision), then goes on in double from the residual left. Measured,
 #: section 11 at 513 x 513 (the last, tight solve, from the last loose one's state): all in
 #: double 31 GMRES iterations, 2.67 s; 1e-4 in single then double 20 + 12, 1.46 + 0.43 s
-SINGLE_START = 0.0
+SINGLE_START = LOOSE_REDUCTION
 #: a solve stops once its residual is below this fraction of ``|b|`` (-), whatever the
 #: reduction asked: the last, tight solve starts near 1e-9 |b| and its 1e-10 reduction
 #: chased rounding. Measured against the session's starting solver (GMRES iterations
