@@ -23,6 +23,7 @@ import numpy as np
 from ..contact import ContactAtEdge, edge_nodes
 from ..friction import Friction, FrictionNotConverged, LoadingUnreachable
 from ..linear import LinearSolver
+from .local import solve_rows
 from .preconditioner import LinePreconditioner
 from .system import RollingSetup, SetState, SetSystem
 
@@ -217,10 +218,10 @@ def run_active_set(setup: RollingSetup, friction: Friction, start: SetState, sol
             stick[Sl[np.argmin(np.hypot(wx[Sl], wy[Sl]))]] = True
         system = SetSystem(setup, SetState(contact=contact, stick=stick, direction=e_full, slope=k_full))
         guess = None if it == 1 else system.unknowns(N, Sx, Sy, d, om)
-        if guess is not None and not (solved & ~contact).any():
+        if guess is not None and known is not None and not (solved & ~contact).any():
             # the guess's forces are the last solution's: its fields, computed for the
             # violations, give the new rows' residual without another product
-            system.know(guess, [f[system.C] for f in v.fields])
+            system.know(guess, [f[system.C] for f in known])
         solved = contact
         lin0 = solves.iterations
         # inexact solves while the slip law is far from settled (the sets and directions
@@ -251,6 +252,7 @@ def run_active_set(setup: RollingSetup, friction: Friction, start: SetState, sol
         dropped |= v.drop
         if not changes and (misfit <= friction.direction_tol and tight or settle is not None and misfit <= settle):
             break
+        prev_stick = stick
         new_c, new_s = _next_sets(setup, v, contact, stick, N, join_slip, careful and changes)
         e_full, k_full = _next_directions(setup, v, contact, new_c & ~new_s, N, Sx, Sy)
         key = np.packbits(np.concatenate([new_c, new_s])).tobytes()
@@ -281,6 +283,19 @@ def run_active_set(setup: RollingSetup, friction: Friction, start: SetState, sol
                 careful = True
                 seen.clear()
         contact, stick = new_c, new_s
+        known = v.fields
+        if 0 < changed <= FEW_CHANGES and not (careful or v.drop.any() or v.add.any() or solves.dense(system)):
+            # a few stick/slip changes: their rows settled locally first (bem.frictional.local)
+            state, Sx, Sy, rounds = solve_rows(setup, SetState(contact=contact, stick=stick, direction=e_full,
+                                                               slope=k_full),
+                                               np.flatnonzero(stick != prev_stick), N, Sx, Sy, om, v.fields,
+                                               SLOPE_FLOOR * min(1.0, misfit) * V)
+            if progress:
+                progress(f"  local rows: {rounds} rounds, {int((state.stick & ~stick).sum())} more stick, "
+                         f"{int((stick & ~state.stick).sum())} more slip")
+            stick, e_full, k_full, known = state.stick, state.direction, state.slope, None
+            changed = np.inf  # the global solve after them: a full loose one (measured: 1e-3 left the tight
+            # solve 36 GMRES iterations instead of 31 at 513 x 513, and one more tight solve)
         if not contact.any():
             raise FrictionNotConverged("the contact set emptied: check the load and the indenter profile")
     else:
