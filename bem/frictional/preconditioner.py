@@ -22,7 +22,12 @@ those columns for every length up to the longest run at once (``O(M^2)``, once a
 :class:`RowInverses`; runs of up to :data:`DENSE_UPTO` nodes take the inverses themselves,
 from the same formula). The slip rows (the slip law) replace ``2 p`` of the run's ``2 m``
 tangential rows: Woodbury's identity with the Toeplitz inverses' columns at the slip
-nodes (``2 p m`` numbers) and a ``2 p x 2 p`` matrix a run makes the solve exact. Against
+nodes (``2 p m`` numbers) and a ``2 p x 2 p`` matrix ``K`` a run makes the solve exact;
+``K^{-1}`` comes from the ``p x p`` inverses of the slip-slip blocks of the Toeplitz
+inverses (kept while a run's length and slip places repeat: they hold no direction or
+slope) and of one ``p x p`` matrix that holds the slip directions and slopes, not by
+inverting ``K`` (``docs/derivations.md`` section 5: section 11 at 513 x 513, the Woodbury
+terms of a late active-set iteration 0.22 -> 0.08 s). Against
 the dense inverse of each line (the module before issue 11's ninth pass: ``5 m^2``
 numbers a line, ``O(m^3)`` to build) the results agree to rounding and the build is
 cheap (``O(p m log m + p^3)``); section 11, one application on the converged state, single
@@ -102,6 +107,11 @@ DENSE_UPTO = 96
 #: this many slip nodes at a time (padded; the transforms' working memory, about 20 kB
 #: a slip node at 513 x 513)
 CHUNK = 2048
+#: runs with at most this many slip nodes (padded to 8) take ``K^{-1}`` composed from its
+#: factors (one product an application); longer ones apply the factors (five ``p x p``
+#: products against one ``2 p x 2 p``, no ``2 p x 2 p`` product to build). Measured,
+#: factors everywhere against the former ``K^{-1}``: one application 0.65 against 0.54 ms on
+#: the issue case at 61 x 61 (its runs hold 1-15 slip nodes), the same (0.545 ms) composed
 COMPOSE_UPTO = 16
 
 
@@ -334,12 +344,13 @@ class LinePreconditioner:
     Use :meth:`attach` for each new system: it builds what it must and sets
     ``system.precondition``. The columns of the runs' Toeplitz inverses at their slip
     nodes are kept per run length and place while some run asks for them (``factorised``
-    counts the columns computed, ``x`` and ``y`` blocks together); the ``2 p x 2 p``
-    Woodbury matrices, which hold the slip directions and slopes, are built every time, so
-    the solve is exact for every state. The
+    counts the columns computed, ``x`` and ``y`` blocks together), and so are the inverses
+    of their slip-slip blocks, per run length and slip places (those of the last attach);
+    the ``p x p`` matrices that hold the slip directions and slopes are built every time,
+    so the solve is exact for every state. The
     applications run in ``dtype`` (single by default: the flexible GMRES of
     :func:`bem.linear.fgmres` keeps every preconditioned vector, so rounding there costs
-    no accuracy), the columns too, the Woodbury matrices are inverted in double. With
+    no accuracy), the columns too, the Woodbury terms are inverted in double. With
     ``threads`` an application whose operands take :data:`THREAD_FROM` bytes or more, and
     the build's columns and inversions, run on two threads. ``filter_power`` (default
     :data:`FILTER_POWER`, read at construction; 0: the lines alone) and ``filter_long``
@@ -430,7 +441,7 @@ class LinePreconditioner:
             Z = inv.solve(spec_t, rt.reshape(2 * R, M), threads=two).reshape(2, R, M)
             if groups:
                 # Woodbury: the slip rows' residuals of the all-stick solution, through the
-                # inverse of the runs' 2p x 2p matrices, back through the Toeplitz inverses'
+                # inverse of the runs' 2p x 2p matrices K, back through the Toeplitz inverses'
                 # slip columns (x and y on two threads)
                 z, rs = Z.reshape(2, -1)[:, slip], rt.reshape(2, -1)[:, slip]
                 w = np.concatenate([diag * (ex * z[0] + ey * z[1]) - rs[0],
@@ -443,6 +454,7 @@ class LinePreconditioner:
                     if Hi.shape[1] == 2 * P:  # K^-1 itself
                         qs.append(np.matmul(Hi, W[:, :, None]).reshape(L, 2, P))
                         continue
+                    # K^-1 W by its factors (see _woodbury): alpha, beta the slip-frame parts
                     al = W[:, :P] / dt.type(diag)
                     c = np.matmul(Gi, np.stack([e1 * al, e2 * al], 1)[..., None])[..., 0]
                     be = np.matmul(Hi, (W[:, P:] + e2 * c[:, 0] - e1 * c[:, 1])[..., None])[..., 0]
@@ -477,17 +489,25 @@ class LinePreconditioner:
 
     def _woodbury(self, system: SetSystem, inv: RowInverses, starts, lens, run) -> list:
         """The runs' Woodbury terms, grouped by slip count ``p`` (padded to a multiple of 8,
-        ``P``): ``[(members, at, where, K^{-1}, Y)]`` for the runs ``members`` (``L``), with
-        ``K^{-1}`` ``(L, 2 P, 2 P)``, ``Y`` ``(L, 2, P, M)`` the runs' Toeplitz inverses' columns
-        at their slip nodes (``x`` then ``y``, as rows), both in ``dtype``; ``where`` the
-        slip rows (``x`` rows, then the ``y`` rows) and ``at`` their flat places in ``(L, 2 P)``.
+        ``P``): ``[(members, at, where, G^{-1}, H^{-1} or K^{-1}, e_x, e_y, Y)]`` for the runs
+        ``members`` (``L``), with ``G^{-1}`` ``(L, 2, P, P)`` the inverses of ``G_x, G_y``,
+        ``H^{-1}`` ``(L, P, P)`` (or, for ``P <=`` :data:`COMPOSE_UPTO`, ``K^{-1}`` ``(L, 2 P,
+        2 P)`` itself, composed from them), the slip directions ``(L, P)``, ``Y`` ``(L, 2, P,
+        M)`` the runs' Toeplitz inverses' columns at their slip nodes (``x`` then ``y``, as
+        rows), all in ``dtype``, 0 (identity blocks) on padding; ``where`` the slip rows (``x``
+        rows, then the ``y`` rows) and ``at`` their flat places in ``(L, 2 P)``.
 
         For a run with slip nodes ``P`` (``p``) and ``G_x, G_y`` the ``P x P`` blocks of its
         Toeplitz inverses, the rows of the slip law on ``z = B^{-1} e`` (``e`` a unit vector
         of a slip row) are ``K = [[d E_x G_x, d E_y G_y], [-E_y + S E_y G_x, E_x - S E_x
         G_y]]``, ``E_x, E_y, S`` the diagonal matrices of the slip nodes' ``e_x, e_y`` and
         slopes and ``d`` = ``system.diag``; the solve is ``z - B^{-1} E_P K^{-1} (R_P z -
-        r_P)``, ``z = B^{-1} r`` (``docs/derivations.md`` section 5)."""
+        r_P)``, ``z = B^{-1} r`` (``docs/derivations.md`` section 5). ``K [a; b] = [w_1;
+        w_2]`` is solved in the slip frame: ``alpha = w_1 / d`` (``alpha = e . (G_x a, G_y
+        b)``), ``H beta = w_2 + D alpha`` with ``H = S - E_y G_x^{-1} E_y - E_x G_y^{-1}
+        E_x``, ``D = E_y G_x^{-1} E_x - E_x G_y^{-1} E_y``, then ``a = G_x^{-1} (E_x alpha +
+        E_y beta)``, ``b = G_y^{-1} (E_y alpha - E_x beta)``: ``p x p`` inverses only, and
+        those of ``G_x, G_y`` depend on the run's length and slip places alone."""
         B = system.B
         if B.size == 0:
             self._columns = (np.zeros(0, int), None)

@@ -1,6 +1,7 @@
 """Frictional steady rolling: input checks, kinematics, limits and energy on a coarse grid."""
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -270,15 +271,21 @@ def test_matrix_free_product_equals_the_dense_system(kernels, load, indentation,
     np.testing.assert_allclose(system.matvec(x), ref, rtol=0, atol=1e-12 * np.abs(ref).max())
 
 
-def test_line_preconditioner_inverts_a_contact_on_one_grid_row(kernels):
+@pytest.mark.parametrize("compose", [16, 0], ids=["K-inverse", "factors"])
+def test_line_preconditioner_inverts_a_contact_on_one_grid_row(kernels, monkeypatch, compose):
     """With every contact node on one grid row (stick and slip mixed; Omega and d given,
     so no global unknowns) and the layer's normal-tangential coupling blocks set to zero
     (the preconditioner leaves them out), the line preconditioner is the exact inverse:
     M A x = x (the inverse of the running sum, the displacement ahead of each run and the
     slip rows are all in the run's block). With the coupling, or on two rows, it is not.
     In double precision the inverse is exact to 1e-12 (|x| ~ 1; measured 1e-15); in
-    single precision (the default) to 1e-5 (measured 3e-7)."""
+    single precision (the default) to 1e-5 (measured 3e-7). Both forms of the Woodbury
+    term: ``K^{-1}`` composed (the run's 8 padded slip places) and its factors applied."""
+    import bem.frictional.preconditioner as pc
+    from bem.frictional import SetState, SetSystem
     from bem.frictional.preconditioner import LinePreconditioner
+
+    monkeypatch.setattr(pc, "COMPOSE_UPTO", compose)
 
     Ky, Kx = GRID.shape
     row = (Ky // 2) * Kx + np.arange(Kx // 2 - 6, Kx // 2 + 6)
@@ -290,9 +297,144 @@ def test_line_preconditioner_inverts_a_contact_on_one_grid_row(kernels):
         assert 0 < system.A.size < C.size
         y = x[:system.n]
         for dtype, tol in ((np.float64, 1e-12), (np.float32, 1e-5)):
-            LinePreconditioner(dtype=dtype).attach(system)
+            lines = LinePreconditioner(dtype=dtype)
+            lines.attach(system)
             err = np.abs(system.precondition(system.matvec(y)) - y).max()
             assert (err < tol) if exact else (err > 1e-3), (dtype, err)
+            if exact:
+                # other slip directions and slopes on the same slip places: the inverses the
+                # first attach kept are reused, and the solve is still exact
+                _, _, _, stick, e, k, _, _ = _state(kern)
+                inside = np.zeros(stick.size, bool)
+                inside[nodes] = True
+                other = SetSystem(system.setup, SetState(contact=inside, stick=stick & inside, direction=e[:, ::-1],
+                                                         slope=2.5 * k))
+                kept, inverted, inv = dict(lines._blocks), [], np.linalg.inv
+
+                def counting(a):
+                    inverted.append(a.ndim)
+                    return inv(a)
+
+                monkeypatch.setattr(np.linalg, "inv", counting)
+                lines.attach(other)
+                monkeypatch.setattr(np.linalg, "inv", inv)
+                assert inverted == [3] and lines._blocks.keys() == kept.keys()  # H alone: no G_x, G_y
+                assert all(np.array_equal(lines._blocks[key], kept[key]) for key in kept)
+                err = np.abs(other.precondition(other.matvec(y)) - y).max()
+                assert err < tol, (dtype, err)
+
+
+def test_local_row_solves_hold_their_rows_and_test_the_window_as_the_active_set(kernels, monkeypatch):
+    """bem.frictional.local.solve_rows, one round, on a synthetic state (random stick/slip
+    split, directions and slopes; random forces): the tangential forces change only on the
+    contact nodes within WINDOW of a changed node along its row, and there the system's x
+    and y rows hold after the round (b - A x by the FFT product, below 1e-9 of the residual
+    before: the window's blocks are exact and the other forces held); the window's sets
+    then follow the active set's tests on that solution (cone excess: slip; slip against
+    the force: stick), its slip nodes take S / |S| and max(|w|, floor) / (mu N), and
+    nothing outside the window changes."""
+    import bem.frictional.local as local
+    from bem.frictional import SetState, SetSystem
+
+    monkeypatch.setattr(local, "ROUNDS", 1)
+    monkeypatch.setattr(local, "WINDOW", 4)  # narrower than the contact's rows here
+    system, C = _system(kernels, None, 1e-4, 2.4)
+    setup, ops = system.setup, system.ops
+    _, _, _, stick, e, k, ell, _ = _state(kernels)
+    contact = np.zeros(stick.size, bool)
+    contact[C] = True
+    state = SetState(contact=contact, stick=stick & contact, direction=np.where(contact[:, None], e, 0.0),
+                     slope=np.where(contact, k, 0.0))
+    rng = np.random.default_rng(11)
+    N, Sx, Sy = (np.zeros(stick.size) for _ in range(3))
+    N[C] = 150.0 / C.size * rng.uniform(0.5, 1.5, C.size)
+    Sx[C], Sy[C] = (0.3 * N[C] * rng.uniform(-1, 1, C.size) for _ in range(2))
+    fields = [f.ravel() for f in ops.fields(*(a.reshape(GRID.shape) for a in (N, Sx, Sy)))]
+    changed = C[[C.size // 3, C.size // 2]]
+    floor = 1e-3 * V
+    new, Sx2, Sy2, rounds = local.solve_rows(setup, state, changed, N, Sx, Sy, 2.4, fields, floor)
+    assert rounds == 1
+    Kx = GRID.shape[1]
+    window = np.zeros(stick.size, bool)
+    for j, i in zip(*np.divmod(changed, Kx)):
+        window[j * Kx + max(0, i - local.WINDOW):j * Kx + min(Kx, i + local.WINDOW + 1)] = True
+    window &= contact
+    moved = (Sx2 != Sx) | (Sy2 != Sy)
+    assert not (moved & ~window).any() and moved.sum() >= 0.9 * window.sum()
+    at = np.searchsorted(system.C, np.flatnonzero(window))
+    full = SetSystem(setup, state)
+    nC = full.nC
+    rows = np.concatenate([nC + at, 2 * nC + at])
+    before = full.b - full.matvec(full.unknowns(N, Sx, Sy, 1e-4, 2.4))
+    after = full.b - full.matvec(full.unknowns(N, Sx2, Sy2, 1e-4, 2.4))
+    assert np.abs(after[rows]).max() < 1e-9 * np.abs(before[rows]).max()
+    _, sx, sy = (f.ravel() for f in ops.fields(*(a.reshape(GRID.shape) for a in (N, Sx2, Sy2))))
+    wx, wy = V * (1 + sx) - 2.4 * ell, V * sy
+    smag = np.hypot(Sx2, Sy2)
+    to_slip = state.stick & (smag > 0.2 * N * (1 + 1e-10))
+    to_stick = contact & ~state.stick & (wx * Sx2 + wy * Sy2 <= 0)
+    expect = np.where(window, (state.stick & ~to_slip) | to_stick, state.stick)
+    assert np.array_equal(new.stick, expect) and to_slip[window].any() and to_stick[window].any()
+    slip = window & ~new.stick
+    np.testing.assert_allclose(new.direction[slip], np.stack([Sx2, Sy2], 1)[slip] / smag[slip, None], atol=1e-12)
+    speed = np.where(to_slip, 0.0, np.hypot(wx, wy))
+    np.testing.assert_allclose(new.slope[slip], np.maximum(speed, floor)[slip] / (0.2 * N[slip]), rtol=1e-9)
+    outside = ~window
+    assert np.array_equal(new.direction[outside], state.direction[outside])
+    assert np.array_equal(new.slope[outside], state.slope[outside])
+    assert not new.slope[window & new.stick].any() and not new.direction[window & new.stick].any()
+
+
+def test_local_rows_after_a_few_changes_are_kept_only_when_they_change_more(kernels, monkeypatch):
+    """In the active set (GMRES solves, dense_limit = 0): after a solve with 1 to
+    FEW_CHANGES stick/slip changes and no contact change, the local row solves run on
+    those nodes; their result is kept when it changes more nodes (more than one round),
+    and the next loose solve is then a full one (LOOSE_REDUCTION); otherwise it is
+    dropped, bit for bit (a stub returning other forces in one round changes nothing), and
+    the next loose solve reduces by FEW_REDUCTION. After more changes: LOOSE_REDUCTION."""
+    import bem.frictional.active_set as active_set
+
+    calls, reductions, lines = [], [], []
+    real_rows, real_call = active_set.solve_rows, active_set.LinearSolves.__call__
+
+    def rows(setup, state, changed, *args):
+        out = real_rows(setup, state, changed, *args)
+        calls.append((changed.size, out[3]))
+        return out
+
+    def call(self, system, guess=None, reduction=None):
+        reductions.append(reduction)
+        return real_call(self, system, guess, reduction)
+
+    monkeypatch.setattr(active_set, "solve_rows", rows)
+    monkeypatch.setattr(active_set.LinearSolves, "__call__", call)
+    friction = Friction(0.2, mode="towed", dense_limit=0)
+    res, _ = solve_friction(problem(), friction, kernels=kernels, energy=False, progress=lines.append)
+    fine = [line for line in lines if not line.startswith("coarse")]
+    assert [c[1] > 1 for c in calls] == [True, False]  # measured: 17 changes, 2 rounds; 2, 1
+    assert all(0 < c[0] <= active_set.FEW_CHANGES for c in calls)
+    steps = [line for line in fine if line.startswith("friction ")]
+    assert len(steps) == len(reductions) == res.record.iterations
+    kept = [i for i, line in enumerate(fine) if line.startswith("  local rows")]
+    for i, line in enumerate(steps[:-1]):
+        counts = [int(t) for t in re.findall(r"[-+](\d+) (?:contact|slip|stick)", line)]
+        after_local = fine.index(line) + 1 in kept
+        if reductions[i + 1] is not None:  # a loose solve
+            few = sum(counts) <= active_set.FEW_CHANGES and not after_local
+            assert reductions[i + 1] == (active_set.FEW_REDUCTION if few else active_set.LOOSE_REDUCTION), line
+    assert len(kept) == 1
+
+    # one round: the stub's forces are dropped, the run is the same bit for bit
+    def stub(setup, state, changed, N, Sx, Sy, *args):
+        return state, 2 * Sx, 0 * Sy, 1
+
+    monkeypatch.setattr(active_set, "solve_rows", stub)
+    monkeypatch.setattr(active_set.LinearSolves, "__call__", real_call)
+    dropped, _ = solve_friction(problem(), friction, kernels=kernels, energy=False)
+    monkeypatch.setattr(active_set, "solve_rows", lambda setup, state, changed, N, Sx, Sy, *a: (state, Sx, Sy, 1))
+    same, _ = solve_friction(problem(), friction, kernels=kernels, energy=False)
+    assert np.array_equal(dropped.force_x, same.force_x) and np.array_equal(dropped.stick, same.stick)
+    assert np.array_equal(same.stick, res.stick)
 
 
 @pytest.mark.parametrize("mode, omega", [("pushed_at_top", None), ("towed", None), ("torque", None),
