@@ -836,9 +836,13 @@ def _replay(kernels, setup, friction, start, expect_error=None):
     k = |w| / (mu N_min); which solves are tight (from a misfit of 1e-2 on, right after a
     set change only from 1e-5, in one-node updates or by dense LU); the cycle bookkeeping (a state counted when the sets change and
     the slip law has settled below set_tol or the contact changes) and, when the run
-    ends on a cycle, the step and the figures of the error. Returns the step counts by
-    kind, the result and the states, and the predicted error (step, cone excess, reversed
-    slip, misfit, contact violation) or None."""
+    ends on a cycle, the step and the figures of the error; the loose solves' reduction
+    (1e-3 after at most 20 changes, 1e-4 else); the local row solves (after 1 to 20
+    stick/slip changes with the contact unchanged, outside one-node updates and dense LU,
+    on the changed nodes of the predicted state; their sets, directions and slopes taken
+    when they ran more than one round, the next solve then at 1e-4). Returns the step
+    counts by kind, the result and the states, and the predicted error (step, cone excess,
+    reversed slip, misfit, contact violation) or None."""
     import bem.frictional.active_set as act
 
     states, sols = [], []
@@ -857,8 +861,17 @@ def _replay(kernels, setup, friction, start, expect_error=None):
             reductions.append(reduction)
             return out
 
+    local = []
+    real_rows = act.solve_rows
+
+    def spy_rows(setup_, state, changed, *args):
+        out = real_rows(setup_, state, changed, *args)
+        local.append((state, changed, out))
+        return out
+
     mp = pytest.MonkeyPatch()
     mp.setattr(act, "SetSystem", spy_system)
+    mp.setattr(act, "solve_rows", spy_rows)
     try:
         if expect_error is None:
             out = act.run_active_set(setup, friction, start, Solves(friction.dense_limit))
@@ -871,9 +884,10 @@ def _replay(kernels, setup, friction, start, expect_error=None):
     K, ax, V_, mu = kernels, GRID.spacing_x, setup.speed, setup.mu
     s, ell, reach = setup.profile, setup.ell, np.isfinite(setup.profile)
     omega_free = setup.omega is None
-    counts = {"all": 0, "drop": 0, "add": 0, "slip": 0, "stick": 0, "held": 0}
+    counts = {"all": 0, "drop": 0, "add": 0, "slip": 0, "stick": 0, "held": 0, "local": 0}
     dropped = np.zeros(s.size, bool)
     seen, careful, reentry, predicted, prev_misfit, prev_changes = {}, False, False, None, np.inf, True
+    few = False  # the next loose solve reduces by FEW_REDUCTION
     for i, (st, (N, Sx, Sy, d, om)) in enumerate(zip(states, sols)):
         N2, X2, Y2 = (a.reshape(GRID.shape) for a in (N, Sx, Sy))
         delta = (_apply(GRID, K["ww"], N2) - _apply(GRID, K["wu"], X2) - _apply(GRID, K["wv"], Y2)).ravel()
@@ -901,6 +915,7 @@ def _replay(kernels, setup, friction, start, expect_error=None):
         dense = 3 * c.sum() + (setup.load is not None) + omega_free <= friction.dense_limit
         tight = prev_misfit <= 1e-2 and (not prev_changes or prev_misfit <= 1e-5 or careful or dense)
         assert (reductions[i] is None) == tight, f"step {i + 1}: tight {tight}, reduction {reductions[i]}"
+        assert tight or reductions[i] == (1e-3 if few else 1e-4), f"step {i + 1}: reduction {reductions[i]}"
         counts["held"] += prev_misfit <= 1e-2 and not tight  # inexact only for the set change
         prev_misfit, prev_changes = misfit, changes
         join = add & (wmag > 0) & (not omega_free) & (np.abs(V_ - om * ell) > 1e-2 * V_)
@@ -955,6 +970,18 @@ def _replay(kernels, setup, friction, start, expect_error=None):
             assert i + 1 == len(states), f"step {i + 1}: the run should have ended ({ends})"
             break
         nxt = states[i + 1]
+        n_changes = int(drop.sum() + add.sum() + to_slip.sum() + to_stick.sum())
+        few = n_changes <= 20
+        rows = None
+        if 0 < n_changes <= 20 and not (careful or drop.any() or add.any() or dense):
+            state, changed, rows = local.pop(0)
+            assert np.array_equal(state.contact, nc) and np.array_equal(state.stick, ns), f"step {i + 1}: local"
+            assert np.array_equal(changed, np.flatnonzero(ns != k)), f"step {i + 1}: local rows' nodes"
+            if rows[3] > 1:
+                ns, few = rows[0].stick, False
+                counts["local"] += 1
+            else:
+                rows = None
         fixed = ns.copy()
         if omega_free and not (fixed & nc).any():
             sl_ = np.flatnonzero(nc)
@@ -971,8 +998,11 @@ def _replay(kernels, setup, friction, start, expect_error=None):
             kk[joining] = wmag[joining] / (mu * N[c & (N > 0)].min())
         e = np.where(new_slip[:, None] & ((smag[:, None] > 0) | joining[:, None]), e, 0.0)
         kk = np.where(new_slip, np.nan_to_num(kk), 0.0)
+        if rows is not None:  # the local rows' own (tested in test_friction.py)
+            e, kk = rows[0].direction, rows[0].slope
         np.testing.assert_allclose(nxt.direction, e, rtol=1e-7, atol=1e-9)
         np.testing.assert_allclose(nxt.slope, kk, rtol=1e-5, atol=1e-9 * kk.max())
+    assert not local, "local row solves the rules do not call for"
     assert ends == {None: "converged", FrictionNotConverged: "cycle"}.get(expect_error, ends) or ends == "accepted"
     return counts, out, states, predicted if ends != "accepted" else "accepted"
 
@@ -1000,13 +1030,24 @@ def _rolling_setup(kernels, friction, load=20.0, start_load=None):
 def test_active_set_steps_follow_the_rules_from_a_small_start(kernels, friction):
     """From the frictionless contact of 8 N under 20 N the contact grows: nodes join in
     stick, or (Omega given, rigid creep over 1 %) in slip along w with k = |w| / (mu N_min).
-    By GMRES (``dense_limit = 0``) a set changes at a misfit between 1e-5 and 1e-2, and the
-    next solve stays inexact."""
-    setup, start = _rolling_setup(kernels, friction, start_load=8.0)
+    By GMRES (``dense_limit = 0``; from 10 N: since the local row solves, every set change
+    from 8 N comes at a misfit above 1e-2) a set changes at a misfit between 1e-5 and 1e-2,
+    and the next solve stays inexact."""
+    setup, start = _rolling_setup(kernels, friction, start_load=8.0 if friction.dense_limit else 10.0)
     assert start.contact.sum() < 50
     counts, out, states, _ = _replay(kernels, setup, friction, start)
     assert counts["held"] >= (friction.dense_limit == 0), counts
     assert out.state.contact.sum() > start.contact.sum() + 10
+
+
+def test_local_row_solves_are_replayed_from_a_small_start(kernels):
+    """By GMRES from 8 N (Omega 0.99 V / R): after a step with a few stick/slip changes the
+    local row solves run two rounds and their sets start the next solve, at 1e-4; the
+    replay checks the call, its nodes, the sets and the reductions around it."""
+    friction = Friction(0.3, "omega", omega=0.99 * V / R, dense_limit=0)
+    setup, start = _rolling_setup(kernels, friction, start_load=8.0)
+    counts, *_ = _replay(kernels, setup, friction, start)
+    assert counts["local"] == 1, counts
 
 
 @pytest.mark.parametrize("friction", [Friction(0.3), Friction(0.3, "omega", omega=0.99 * V / R),
