@@ -293,17 +293,25 @@ def test_a_single_precision_basis_still_ends_on_the_true_residual():
     assert its64 <= its32 <= its64 + 25  # a restart or two more, from about 1e-7 (measured 42 and 63)
 
 
+def _with_single(calls):
+    """A :class:`Dense` system class with a ``matvec_single`` (the product in single
+    precision) that records the dtype it sees in ``calls``."""
+
+    class Single(Dense):
+        def matvec_single(self, x):
+            calls.append(x.dtype)
+            return (self.A.astype(np.float32) @ x.astype(np.float32)).astype(float)
+
+    return Single
+
+
 def test_loose_calls_take_the_systems_single_precision_product():
     """A call reducing by ``single_from`` or less runs its cycles on ``matvec_single``
     when the system has one, on Krylov vectors kept in single precision; a tighter call
     and a system without one do not."""
     A, b = _near_identity(n=60, eps=0.6, seed=2)
     calls = []
-
-    class Single(Dense):
-        def matvec_single(self, x):
-            calls.append(x.dtype)
-            return (A.astype(np.float32) @ x.astype(np.float32)).astype(float)
+    Single = _with_single(calls)
 
     solver = LinearSolver(0, 1e-12, single_from=1e-5)
     x = solver(Single(A, b), rtol=1e-5)
@@ -326,11 +334,7 @@ def test_a_tight_call_may_start_in_single_precision():
     system without a single-precision product, are solved in double throughout."""
     A, b = _near_identity(n=60, eps=0.6, seed=4)
     calls = []
-
-    class Single(Dense):
-        def matvec_single(self, x):
-            calls.append(x.dtype)
-            return (A.astype(np.float32) @ x.astype(np.float32)).astype(float)
+    Single = _with_single(calls)
 
     plain = LinearSolver(0, 1e-12, single_from=1e-5)
     plain(Single(A, b))
