@@ -87,6 +87,13 @@ RESIDUAL_FLOOR = 1e-15
 #: 57, 70, 46, 8/64, 8/96, 10/153
 FEW_CHANGES = 20
 FEW_REDUCTION = 1e-3
+#: after a solve with 1 to :data:`FEW_CHANGES` stick/slip changes on a contact of this many
+#: nodes or more, the changed nodes' rows are solved locally (:mod:`bem.frictional.local`):
+#: their cost does not grow with the grid, a global solve's does. Measured (the same paths
+#: either way below it, where they never changed more nodes): 41 x 41 and the issue case at
+#: 61 x 61 3-4 % slower with them; section 11 at 513 x 513 (141 000 contact nodes) 10 -> 9
+#: active-set iterations
+LOCAL_FROM = 20_000
 
 
 def tight_solve(misfit: float, changes: bool, careful: bool, dense: bool) -> bool:
@@ -284,7 +291,8 @@ def run_active_set(setup: RollingSetup, friction: Friction, start: SetState, sol
                 seen.clear()
         contact, stick = new_c, new_s
         known = v.fields
-        if 0 < changed <= FEW_CHANGES and not (careful or v.drop.any() or v.add.any() or solves.dense(system)):
+        if (0 < changed <= FEW_CHANGES and system.nC >= LOCAL_FROM
+                and not (careful or v.drop.any() or v.add.any() or solves.dense(system))):
             # a few stick/slip changes: their rows solved locally (bem.frictional.local); kept
             # when that changes more nodes, the next global solve then a full loose one
             # (measured: 1e-3 left the tight solve 36 GMRES iterations instead of 31 at

@@ -332,7 +332,7 @@ def test_local_row_solves_hold_their_rows_and_test_the_window_as_the_active_set(
     before: the window's blocks are exact and the other forces held); the window's sets
     then follow the active set's tests on that solution (cone excess: slip; slip against
     the force: stick), its slip nodes take S / |S| and max(|w|, floor) / (mu N), and
-    nothing outside the window changes."""
+    nothing outside the window changes. A singular window changes nothing (0 rounds)."""
     import bem.frictional.local as local
     from bem.frictional import SetState, SetSystem
 
@@ -384,10 +384,18 @@ def test_local_row_solves_hold_their_rows_and_test_the_window_as_the_active_set(
     assert np.array_equal(new.slope[outside], state.slope[outside])
     assert not new.slope[window & new.stick].any() and not new.direction[window & new.stick].any()
 
+    def singular(a, b):
+        raise np.linalg.LinAlgError("singular")
+
+    monkeypatch.setattr(np.linalg, "solve", singular)
+    same, Sx3, Sy3, rounds = local.solve_rows(setup, state, changed, N, Sx, Sy, 2.4, fields, floor)
+    assert rounds == 0 and same is state and Sx3 is Sx and Sy3 is Sy
+
 
 def test_local_rows_after_a_few_changes_are_kept_only_when_they_change_more(kernels, monkeypatch):
-    """In the active set (GMRES solves, dense_limit = 0): after a solve with 1 to
-    FEW_CHANGES stick/slip changes and no contact change, the local row solves run on
+    """In the active set (GMRES solves, dense_limit = 0; LOCAL_FROM lowered to 1 node):
+    after a solve with 1 to FEW_CHANGES stick/slip changes and no contact change, the
+    local row solves run on
     those nodes; their result is kept when it changes more nodes (more than one round),
     and the next loose solve is then a full one (LOOSE_REDUCTION); otherwise it is
     dropped, bit for bit (a stub returning other forces in one round changes nothing), and
@@ -406,6 +414,7 @@ def test_local_rows_after_a_few_changes_are_kept_only_when_they_change_more(kern
         reductions.append(reduction)
         return real_call(self, system, guess, reduction)
 
+    monkeypatch.setattr(active_set, "LOCAL_FROM", 1)  # this contact has 67 nodes
     monkeypatch.setattr(active_set, "solve_rows", rows)
     monkeypatch.setattr(active_set.LinearSolves, "__call__", call)
     friction = Friction(0.2, mode="towed", dense_limit=0)

@@ -973,7 +973,7 @@ def _replay(kernels, setup, friction, start, expect_error=None):
         n_changes = int(drop.sum() + add.sum() + to_slip.sum() + to_stick.sum())
         few = n_changes <= 20
         rows = None
-        if 0 < n_changes <= 20 and not (careful or drop.any() or add.any() or dense):
+        if 0 < n_changes <= 20 and c.sum() >= act.LOCAL_FROM and not (careful or drop.any() or add.any() or dense):
             state, changed, rows = local.pop(0)
             assert np.array_equal(state.contact, nc) and np.array_equal(state.stick, ns), f"step {i + 1}: local"
             assert np.array_equal(changed, np.flatnonzero(ns != k)), f"step {i + 1}: local rows' nodes"
@@ -1041,12 +1041,19 @@ def test_active_set_steps_follow_the_rules_from_a_small_start(kernels, friction)
 
 
 def test_local_row_solves_are_replayed_from_a_small_start(kernels):
-    """By GMRES from 8 N (Omega 0.99 V / R): after a step with a few stick/slip changes the
-    local row solves run two rounds and their sets start the next solve, at 1e-4; the
-    replay checks the call, its nodes, the sets and the reductions around it."""
+    """By GMRES from 8 N (Omega 0.99 V / R), with local row solves from one contact node
+    on: after a step with a few stick/slip changes they run two rounds and their sets start
+    the next solve, at 1e-4; the replay checks the call, its nodes, the sets and the
+    reductions around it. With the default LOCAL_FROM they do not run on this contact."""
+    import bem.frictional.active_set as act
+
     friction = Friction(0.3, "omega", omega=0.99 * V / R, dense_limit=0)
     setup, start = _rolling_setup(kernels, friction, start_load=8.0)
     counts, *_ = _replay(kernels, setup, friction, start)
+    assert counts["local"] == 0, counts  # a contact of 67 nodes: below LOCAL_FROM
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(act, "LOCAL_FROM", 1)
+        counts, *_ = _replay(kernels, setup, friction, start)
     assert counts["local"] == 1, counts
 
 
