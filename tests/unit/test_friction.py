@@ -341,6 +341,12 @@ def test_local_row_solves_hold_their_rows_and_test_the_window_as_the_active_set(
     system, C = _system(kernels, None, 1e-4, 2.4)
     setup, ops = system.setup, system.ops
     _, _, _, stick, e, k, ell, _ = _state(kernels)
+    # and contact nodes at the ends of a row and of its neighbours, where a window that
+    # ran past the row's end would reach the next row's first or the last row's last node
+    Ky, Kx = GRID.shape
+    j0 = Ky // 2
+    edge = np.array([j0 * Kx, j0 * Kx + 1, j0 * Kx + Kx - 2, j0 * Kx + Kx - 1, j0 * Kx - 1, (j0 + 1) * Kx])
+    C = np.union1d(C, edge)
     contact = np.zeros(stick.size, bool)
     contact[C] = True
     state = SetState(contact=contact, stick=stick & contact, direction=np.where(contact[:, None], e, 0.0),
@@ -350,19 +356,18 @@ def test_local_row_solves_hold_their_rows_and_test_the_window_as_the_active_set(
     N[C] = 150.0 / C.size * rng.uniform(0.5, 1.5, C.size)
     Sx[C], Sy[C] = (0.3 * N[C] * rng.uniform(-1, 1, C.size) for _ in range(2))
     fields = [f.ravel() for f in ops.fields(*(a.reshape(GRID.shape) for a in (N, Sx, Sy)))]
-    changed = C[[C.size // 3, C.size // 2]]
+    changed = np.r_[C[[C.size // 3, C.size // 2]], edge[[1, 2]]]
     floor = 1e-3 * V
     new, Sx2, Sy2, rounds = local.solve_rows(setup, state, changed, N, Sx, Sy, 2.4, fields, floor)
-    assert rounds == 1
-    Kx = GRID.shape[1]
+    assert rounds == 1 and new.contact is state.contact
     window = np.zeros(stick.size, bool)
     for j, i in zip(*np.divmod(changed, Kx)):
         window[j * Kx + max(0, i - local.WINDOW):j * Kx + min(Kx, i + local.WINDOW + 1)] = True
     window &= contact
     moved = (Sx2 != Sx) | (Sy2 != Sy)
     assert not (moved & ~window).any() and moved.sum() >= 0.9 * window.sum()
-    at = np.searchsorted(system.C, np.flatnonzero(window))
     full = SetSystem(setup, state)
+    at = np.searchsorted(full.C, np.flatnonzero(window))
     nC = full.nC
     rows = np.concatenate([nC + at, 2 * nC + at])
     before = full.b - full.matvec(full.unknowns(N, Sx, Sy, 1e-4, 2.4))
