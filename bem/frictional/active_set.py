@@ -11,6 +11,11 @@ repeat and no direction moves by more than ``direction_tol``: that state satisfi
 discrete condition exactly (to the linear solve). A recurring set state (a cycle)
 switches to one-node updates; a cycle there is accepted within ``set_tol``, then
 returning nodes join in slip, then it raises :class:`FrictionNotConverged`.
+
+The solves are inexact (GMRES reducing the residual by :data:`LOOSE_REDUCTION`, by
+:data:`FEW_REDUCTION` right after a few set changes) until the slip law has nearly settled,
+then tight. On large contacts a few stick/slip changes are first followed along their
+grid rows by local solves (:mod:`bem.frictional.local`, :data:`LOCAL_FROM`).
 """
 
 from __future__ import annotations
@@ -219,6 +224,7 @@ def run_active_set(setup: RollingSetup, friction: Friction, start: SetState, sol
     misfit = np.inf
     changes = True
     changed = np.inf  # set changes at the last measure
+    known = None  # the fields of the last solution's forces, when the next guess holds them
     for it in range(1, friction.max_iter + 1):
         if omega_free and not (stick & contact).any():  # Omega needs one stick node at least
             Sl = np.flatnonzero(contact)
