@@ -322,6 +322,18 @@ def test_line_preconditioner_inverts_a_contact_on_one_grid_row(kernels, monkeypa
                 assert all(np.array_equal(lines._blocks[key], kept[key]) for key in kept)
                 err = np.abs(other.precondition(other.matvec(y)) - y).max()
                 assert err < tol, (dtype, err)
+    # nine slip nodes in the run (more than one block of 8 padded places), three stick
+    system, C = _system(uncoupled, None, 1e-4, 2.4, contact=row)
+    _, _, _, _, e, k, _, _ = _state(uncoupled)
+    inside = np.zeros(e.shape[0], bool)
+    inside[row] = True
+    stick = np.zeros_like(inside)
+    stick[row[[0, 5, 11]]] = True
+    nine = SetSystem(system.setup, SetState(contact=inside, stick=stick, direction=e, slope=k))
+    assert nine.B.size == 9
+    LinePreconditioner(dtype=np.float64).attach(nine)
+    y = x[:nine.n]
+    assert np.abs(nine.precondition(nine.matvec(y)) - y).max() < 1e-12
 
 
 def test_local_row_solves_hold_their_rows_and_test_the_window_as_the_active_set(kernels, monkeypatch):
