@@ -334,6 +334,16 @@ def test_line_preconditioner_inverts_a_contact_on_one_grid_row(kernels, monkeypa
     LinePreconditioner(dtype=np.float64).attach(nine)
     y = x[:nine.n]
     assert np.abs(nine.precondition(nine.matvec(y)) - y).max() < 1e-12
+    # two runs of 3 and 9 slip nodes (two groups of padded sizes): the same on one thread
+    inside[row + Kx] = True
+    stick[row + Kx] = True
+    stick[row[[0, 5, 11]] + Kx] = False
+    both = SetSystem(system.setup, SetState(contact=inside, stick=stick, direction=e, slope=k))
+    out = []
+    for threads in (True, False):
+        LinePreconditioner(dtype=np.float64, threads=threads).attach(both)
+        out.append(both.precondition(x[:both.n]))
+    np.testing.assert_allclose(out[1], out[0], rtol=0, atol=1e-12 * np.abs(out[0]).max())
 
 
 def test_local_row_solves_hold_their_rows_and_test_the_window_as_the_active_set(kernels, monkeypatch):
