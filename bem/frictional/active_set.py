@@ -297,7 +297,7 @@ def run_active_set(setup: RollingSetup, friction: Friction, start: SetState, sol
                 seen.clear()
         contact, stick = new_c, new_s
         known = v.fields
-        if (0 < changed <= FEW_CHANGES and system.nC >= LOCAL_FROM
+        if (0 < changed <= FEW_CHANGES and n_contact >= LOCAL_FROM
                 and not (careful or v.drop.any() or v.add.any() or solves.dense(system))):
             # a few stick/slip changes: their rows solved locally (bem.frictional.local); kept
             # when that changes more nodes, the next global solve then a full loose one
