@@ -196,12 +196,21 @@ class LinearSolves:
 
 
 def run_active_set(setup: RollingSetup, friction: Friction, start: SetState, solves: LinearSolves,
-                   progress: Callable[[str], None] | None = None, settle: float | None = None) -> ActiveSetResult:
+                   progress: Callable[[str], None] | None = None, settle: float | None = None,
+                   forces: tuple | None = None) -> ActiveSetResult:
     """Kalker's active-set iteration from the sets ``start`` (see the module docstring).
 
     With ``settle`` (-) it ends as soon as the sets repeat and the slip misfit is at most
     ``settle``, without the tight solve: for a coarse level whose solution only starts the
-    fine grid's iteration (its sets, slip directions and slip speeds).
+    fine grid's iteration (its sets, slip directions and slip speeds). ``forces``: ``(N,
+    S_x, S_y, d, Omega)`` (flat full-grid forces in N, m, rad/s) that start the first
+    solve (:func:`~bem.frictional.starts.coarse_forces`); from zero without.
+
+    It also ends, the sets repeating, after a tight solve that took no GMRES iteration with
+    the misfit at most :data:`SETTLED`: that solve started below the residual floor, so the
+    directions cannot move any more (section 11 at 513 x 513 from another start stopped at
+    a misfit of 2.6e-7 in ``||S| / (mu N) - 1|`` at an edge node carrying 2.5e-5 of the
+    largest force, and repeated that state until ``max_iter``).
 
     Raises
     ------
@@ -230,7 +239,8 @@ def run_active_set(setup: RollingSetup, friction: Friction, start: SetState, sol
             Sl = np.flatnonzero(contact)
             stick[Sl[np.argmin(np.hypot(wx[Sl], wy[Sl]))]] = True
         system = SetSystem(setup, SetState(contact=contact, stick=stick, direction=e_full, slope=k_full))
-        guess = None if it == 1 else system.unknowns(N, Sx, Sy, d, om)
+        start_guess = forces if it == 1 else (N, Sx, Sy, d, om)
+        guess = None if start_guess is None else system.unknowns(*start_guess)
         if guess is not None and known is not None and not (solved & ~contact).any():
             # the guess's forces are the last solution's: its fields, computed for the
             # violations, give the new rows' residual without another product
@@ -263,7 +273,12 @@ def run_active_set(setup: RollingSetup, friction: Friction, start: SetState, sol
         if reentry:
             join_slip |= v.add & (v.wmag > 0) & dropped
         dropped |= v.drop
-        if not changes and (misfit <= friction.direction_tol and tight or settle is not None and misfit <= settle):
+        # a tight solve that took no GMRES iteration started at the residual floor: the
+        # directions it was given are as settled as the solve can make them (a misfit left
+        # above direction_tol is then rounding at a node with a tiny force or slip)
+        stalled = tight and solves.iterations == lin0 and not solves.dense(system) and misfit <= SETTLED
+        if not changes and (tight and (misfit <= friction.direction_tol or stalled)
+                            or settle is not None and misfit <= settle):
             break
         prev_stick = stick
         new_c, new_s = _next_sets(setup, v, contact, stick, N, join_slip, careful and changes)

@@ -569,7 +569,10 @@ class LinePreconditioner:
             np.multiply(columns[which[s]].swapaxes(1, 2), valid[:, None, :, None], out=Y)
             loc = np.where(valid, local[s], 0)
             # the inverses of G_x, G_y depend on the run's length and slip places alone: kept
-            keys = [bytes(np.int64(lens[q])) + loc[i, :p[i]].tobytes() for i, q in enumerate(members)]
+            # (the length as 8 bytes: bytes(n) would be n zero bytes, and a run of length n with
+            # its first slip node at place 0 then shares its key with one of length n + 8)
+            keys = [np.int64(lens[q]).tobytes() + loc[i, :p[i]].astype(np.int64).tobytes()
+                    for i, q in enumerate(members)]
             Gi = np.empty((L, 2, P, P))
             fresh = np.array([k not in kept for k in keys])
             for i in np.flatnonzero(~fresh):

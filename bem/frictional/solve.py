@@ -19,7 +19,7 @@ from ..spectral import BLOCKS
 from .active_set import ActiveSetResult, LinearSolves, run_active_set
 from .loading import check_reachable, constraint
 from .operators import RollingOperators
-from .starts import coarse_start, continuation, frictionless_start, saturation_creepage
+from .starts import coarse_forces, coarse_start, continuation, frictionless_start, saturation_creepage
 from .system import RollingSetup, SetState, SetSystem
 
 __all__ = ["solve_friction", "solve_rolling", "COARSE_SETTLE", "START_RTOL", "OVERLAP_FROM"]
@@ -146,13 +146,15 @@ def solve_rolling(ops: RollingOperators, profile, arm, ell, radius: float, speed
                        np.zeros(size, bool), (), "dense", 0)
 
     saturation = saturation_creepage(N0 > 0, g.shape, g.spacing_x, friction.mu, radius)
-    starts = [frictionless_start(N0, ell, speed, friction, saturation)]
+    starts = [(frictionless_start(N0, ell, speed, friction, saturation), None)]
     if coarse is not None:
-        starts.insert(0, coarse_start(coarse, g.shape, N0, friction.mu))
+        # the coarse solution's sets start the fine grid's, its forces (prolonged) the first solve
+        forces = coarse_forces(coarse, g.shape, N0, normal.indentation, normal.coarse)
+        starts.insert(0, (coarse_start(coarse, g.shape, N0, friction.mu), forces))
     try:
-        for i, start in enumerate(starts):
+        for i, (start, forces) in enumerate(starts):
             try:
-                out = run_active_set(setup, friction, start, solves, progress, settle)
+                out = run_active_set(setup, friction, start, solves, progress, settle, forces)
                 break
             except FrictionNotConverged as exc:
                 if i == len(starts) - 1:

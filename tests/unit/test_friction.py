@@ -346,6 +346,38 @@ def test_line_preconditioner_inverts_a_contact_on_one_grid_row(kernels, monkeypa
     np.testing.assert_allclose(out[1], out[0], rtol=0, atol=1e-12 * np.abs(out[0]).max())
 
 
+def test_kept_woodbury_inverses_are_told_apart_by_run_length_and_slip_places(kernels):
+    """The ``G_x, G_y`` inverses a preconditioner keeps are looked up by the run's length and
+    its slip places. A run of 12 nodes slipping at places 0-9 and, later, a run of 20
+    slipping at 1-9 (10 and 9 slip nodes, both padded to 16) must not share them: with the
+    length written as ``bytes(n)`` (n zero bytes, the key until session 31) their keys were
+    the same, the second attach reused the first run's inverses and the solve was off; a
+    run of 9 slip nodes after one of 8 (16 and 8 padded places) raised a shape error
+    (section 11 at 513 x 513). On one grid row without the coupling blocks the solve is
+    exact (see the test above), so each attach is checked against its own blocks."""
+    from bem.frictional import SetState, SetSystem
+    from bem.frictional.preconditioner import LinePreconditioner
+
+    Ky, Kx = GRID.shape
+    uncoupled = {b: (np.zeros_like(k) if b in ("wu", "wv", "uw", "vw") else k) for b, k in kernels.items()}
+    system, _ = _system(uncoupled, None, 1e-4, 2.4, contact=(Ky // 2) * Kx + np.arange(12))
+    _, _, _, _, e, k, _, _ = _state(uncoupled)
+    lines = LinePreconditioner(dtype=np.float64)
+    for length, slip in ((12, range(10)), (20, range(1, 10)), (12, range(10)), (20, range(1, 10)),
+                         (12, range(8)), (20, range(9))):
+        nodes = (Ky // 2) * Kx + np.arange(length)
+        inside = np.zeros(e.shape[0], bool)
+        inside[nodes] = True
+        stick = inside.copy()
+        stick[nodes[list(slip)]] = False
+        one = SetSystem(system.setup, SetState(contact=inside, stick=stick, direction=e, slope=k))
+        lines.attach(one)
+        y = np.random.default_rng(length).normal(size=one.n)
+        err = np.abs(one.precondition(one.matvec(y)) - y).max()
+        assert err < 1e-12, (length, list(slip), err)
+    assert len(lines._blocks) == 1  # the last run's, kept
+
+
 def test_local_row_solves_hold_their_rows_and_test_the_window_as_the_active_set(kernels, monkeypatch):
     """bem.frictional.local.solve_rows, one round, on a synthetic state (random stick/slip
     split, directions and slopes; random forces): the tangential forces change only on the
@@ -572,3 +604,29 @@ def test_a_row_coupling_uv_block_is_left_out_of_the_runs(kernels):
         got = system.unknowns(N, Sx, Sy, 1e-4, 2.4)
         ref = np.linalg.solve(system.dense(), system.b)
         assert np.abs(got - ref).max() < 1e-8 * np.abs(ref).max()
+
+
+def test_prolong_is_exact_on_bilinear_fields_and_coarse_forces_scale_by_the_node_area():
+    """:func:`bem.frictional.starts.prolong` reproduces ``a + b x + c y + e x y`` sampled on
+    every other node at every node of the fine grid (the mean of two neighbours is exact
+    along an edge, of four at a cell's centre); :func:`coarse_forces` hands on the fine
+    frictionless forces, a quarter of the prolonged coarse tangential forces on their
+    contact (a fine node's area is a quarter of a coarse node's) and nothing off it, the
+    fine indentation plus what friction added on the coarse grid, and the coarse Omega."""
+    from types import SimpleNamespace
+
+    from bem.frictional.starts import coarse_forces, prolong
+
+    Ky, Kx = 9, 13
+    y, x = np.mgrid[0:Ky, 0:Kx].astype(float)
+    f = 0.3 + 1.7 * x - 0.4 * y + 0.05 * x * y
+    np.testing.assert_allclose(prolong(f[::2, ::2], (Ky, Kx)), f, rtol=0, atol=1e-13)
+    rng = np.random.default_rng(3)
+    N0 = np.where(rng.random(Ky * Kx) < 0.6, rng.uniform(0.1, 1.0, Ky * Kx), 0.0)
+    coarse = SimpleNamespace(force_x=np.full((5, 7), 0.8), force_y=f[::2, ::2], indentation=2.5e-4, omega=3.1)
+    below = SimpleNamespace(indentation=2.0e-4)
+    N, Sx, Sy, d, om = coarse_forces(coarse, (Ky, Kx), N0, 1.1e-4, below)
+    assert N is N0 and om == 3.1 and d == pytest.approx(1.1e-4 + 0.5e-4, rel=1e-12)
+    np.testing.assert_allclose(Sx, np.where(N0 > 0, 0.2, 0.0), rtol=1e-14)
+    np.testing.assert_allclose(Sy, np.where(N0 > 0, f.ravel() / 4, 0.0), rtol=0, atol=1e-13)
+    assert coarse_forces(coarse, (Ky, Kx), N0, 1.1e-4)[3] == 1.1e-4  # no coarse frictionless solution

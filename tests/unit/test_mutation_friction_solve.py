@@ -447,11 +447,14 @@ def test_failed_coarse_start_falls_back_to_all_stick(big_kernels, monkeypatch):
     real = fs.run_active_set
     starts = []
 
-    def first_fails(setup, friction, start, solves, progress=None, settle=None):
+    def first_fails(setup, friction, start, solves, progress=None, settle=None, forces=None):
         starts.append((setup.ops.grid.shape, start))
+        guesses.append((setup.ops.grid.shape, forces))
         if setup.ops.grid.shape == (25, 25) and len([s for s in starts if s[0] == (25, 25)]) == 1:
             raise FrictionNotConverged("planted")
-        return real(setup, friction, start, solves, progress, settle)
+        return real(setup, friction, start, solves, progress, settle, forces)
+
+    guesses = []
 
     monkeypatch.setattr(fs, "run_active_set", first_fails)
     lines = []
@@ -462,6 +465,9 @@ def test_failed_coarse_start_falls_back_to_all_stick(big_kernels, monkeypatch):
     assert not (fine[1].contact & ~fine[1].stick).any()  # the second start: all stick
     assert (fine[0].contact & ~fine[0].stick).any()  # the first: the coarse grid's, with slip
     assert "friction: the coarse grid's start failed (planted); starting from all stick" in lines
+    # the coarse start brings the coarse forces as the first iterate; the all-stick one none
+    fine_forces = [f for shape, f in guesses if shape == (25, 25)]
+    assert fine_forces[0] is not None and len(fine_forces[0]) == 5 and fine_forces[1] is None
     check_result(res, problem(grid=BIG), friction, big_kernels)
 
 
@@ -1236,8 +1242,8 @@ def test_coarse_level_settles_without_the_tight_solve(big_kernels, monkeypatch):
     real = fs.run_active_set
     calls = []
 
-    def spy(setup, friction, start, solves, progress=None, settle=None):
-        out = real(setup, friction, start, solves, progress, settle)
+    def spy(setup, friction, start, solves, progress=None, settle=None, forces=None):
+        out = real(setup, friction, start, solves, progress, settle, forces)
         calls.append((setup.ops.grid.shape, settle, out.history))
         return out
 

@@ -274,3 +274,41 @@ def test_a_returning_node_joins_in_slip_once_the_reentry_rule_is_on(monkeypatch,
     np.testing.assert_allclose(out.state.direction[Q], W_OUT / np.hypot(*W_OUT), rtol=1e-9)
     if creep:
         np.testing.assert_allclose(out.state.direction[RR], W_OUT / np.hypot(*W_OUT), rtol=1e-9)
+
+
+class CountingLayer(ScriptedLayer):
+    """A scripted layer whose every solve counts ``its`` GMRES iterations."""
+
+    def __init__(self, respond, its):
+        super().__init__(respond)
+        self.its = its
+
+    def __call__(self, system, guess=None, reduction=None):
+        self.iterations += self.its
+        return super().__call__(system, guess, reduction)
+
+
+@pytest.mark.parametrize("angle, its, ends", [
+    (2.6e-7, 0, 2),     # the tight solve took no iteration: the misfit 2.6e-7 is the floor's
+    (2.6e-7, 5, None),  # it moved the forces, and the misfit did not fall: no converged state
+    (2e-5, 0, None),    # no iteration, but a misfit above SETTLED is not rounding: not accepted
+    (5e-8, 5, 2),       # below direction_tol: converged, whatever the solve took
+])
+def test_a_tight_solve_at_the_residual_floor_ends_the_iteration(monkeypatch, angle, its, ends):
+    """Every slip velocity ``angle`` (rad) off its force, so the slip misfit stays
+    ``sin(angle)`` whatever the directions: the sets repeat from the first solve, the second
+    is tight (misfit <= LOOSE_UNTIL). When that tight solve took no GMRES iteration (it
+    started below the residual floor) and the misfit is at most SETTLED, the state is
+    accepted at iteration 2; otherwise, above direction_tol, the run goes on to max_iter and
+    raises."""
+    layer = CountingLayer(lambda state: _base(state, angle), its)
+    friction = Friction(MU, "omega", omega=OMEGA, max_iter=6)
+    start = _state(C0, stick=C0[:3])
+    if ends is None:
+        with pytest.raises(FrictionNotConverged, match="no converged stick/slip state in 6 iterations"):
+            layer.run(monkeypatch, start, friction)
+        assert len(layer.states) == 6
+        return
+    out = layer.run(monkeypatch, start, friction)
+    assert len(out.history) == ends == len(layer.states)
+    assert out.history[-1][2] == pytest.approx(np.sin(angle), rel=1e-6)
