@@ -243,10 +243,12 @@ class LinearSolver:
         self.iterations, self.used_gmres = 0, False
 
     def __call__(self, system, guess: np.ndarray | None = None, *, rtol: float | None = None, what: str = "",
-                 hint: str = "") -> np.ndarray:
+                 hint: str = "", of_b: bool = False) -> np.ndarray:
         """Solve ``system`` (``guess`` starts GMRES; ``rtol`` overrides the solver's for
-        this call); returns the solution vector. ``what`` names the system and ``hint``
-        says what to change, in error messages."""
+        this call; with ``of_b`` it is relative to ``|b|`` even with ``correction``: a
+        guess from elsewhere, whose residual says little of the accuracy needed); returns
+        the solution vector. ``what`` names the system and ``hint`` says what to change,
+        in error messages."""
         rtol = self.rtol if rtol is None else rtol
         n = system.n
         if n <= self.dense_limit:
@@ -255,17 +257,19 @@ class LinearSolver:
             except np.linalg.LinAlgError as exc:
                 raise self.error(f"singular system ({what or f'{n} unknowns'}): {exc}") from exc
         self.used_gmres = True
-        return self._fgmres(system, getattr(system, "precondition", None), guess, rtol, what, hint)
+        return self._fgmres(system, getattr(system, "precondition", None), guess, rtol, what, hint, of_b)
 
-    def _fgmres(self, system, prec, guess, rtol, what, hint):
+    def _fgmres(self, system, prec, guess, rtol, what, hint, of_b=False):
         """:func:`fgmres` on the correction to ``guess`` (or from zero), the residual
-        reduced by ``rtol``."""
+        reduced by ``rtol`` (``of_b``: to ``rtol |b|``)."""
         n = system.n
         x0 = np.zeros(n) if guess is None else np.asarray(guess, float)
         residual = getattr(system, "residual", None)  # b - A x, when the system has it
         b = system.b if guess is None else residual(x0) if residual else system.b - system.matvec(x0)
-        ref = b if self.correction else system.b
+        ref = b if self.correction and not of_b else system.b
         tol = max(rtol * float(np.linalg.norm(ref)), self.floor * float(np.linalg.norm(system.b)))
+        if of_b:  # the reduction this asks of the guess's residual decides the precision
+            rtol = min(1.0, tol / max(float(np.linalg.norm(b)), 1e-300))
         single = getattr(system, "matvec_single", None)
         inner = single if rtol >= self.single_from else None
         x = np.zeros(n)

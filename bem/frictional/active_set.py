@@ -99,6 +99,18 @@ FEW_REDUCTION = 1e-3
 #: 61 x 61 3-4 % slower with them; section 11 at 513 x 513 (141 000 contact nodes) 10 -> 9
 #: active-set iterations
 LOCAL_FROM = 20_000
+#: the first solve from forces given (the coarse grid's, :func:`~bem.frictional.starts.
+#: coarse_forces`) stops once its residual is this fraction of ``|b|`` (-): reduced by
+#: :data:`LOOSE_REDUCTION` from the guess's own residual instead, it was 500 times more
+#: accurate than a first solve from zero at 513 x 513 (the guess's residual 2e-3 |b|) and
+#: cost GMRES iterations on the small grids. Measured (fine-grid active-set / GMRES
+#: iterations; from zero (session 30) -> the guess's residual reduced by 1e-4 -> to 1e-4,
+#: 1e-5, 1e-6, 1e-7 |b|): section 11 at 41 x 41 5/41 -> 5/44 -> 5/40, 5/41, 5/43, 5/46;
+#: issue case 61 x 61 5/61 -> 5/66 -> 5/56, 5/59, 5/61, 5/64; 121 x 121 5/74 -> 5/77 ->
+#: 6/75, 5/67, 5/70, 5/74; section 11 at 129 x 129 7/67 -> 7/70 -> 7/64, 7/63, 7/68, 7/71;
+#: 257 x 257 7/90 -> 7/87 -> 8/83, 7/79, 7/85, 7/89; 513 x 513 9/159 -> 7/133 -> 8/139,
+#: 7/121, 7/127, 7/141 (the same converged states throughout)
+START_REDUCTION = 1e-5
 
 
 def tight_solve(misfit: float, changes: bool, careful: bool, dense: bool) -> bool:
@@ -187,11 +199,11 @@ class LinearSolves:
         grid = system.ops.grid
         system.ops.fields(*(np.zeros(grid.shape),) * 3)
 
-    def __call__(self, system: SetSystem, guess=None, reduction: float | None = None):
+    def __call__(self, system: SetSystem, guess=None, reduction: float | None = None, of_b: bool = False):
         if not self.dense(system):
             self.lines.attach(system)
         x = self.solver(system, guess, rtol=reduction, what=f"{system.nC} contact nodes ({system.A.size} stick)",
-                        hint="refine the grid less or raise friction.dense_limit")
+                        hint="refine the grid less or raise friction.dense_limit", of_b=of_b)
         return system.full(x)
 
 
@@ -250,8 +262,12 @@ def run_active_set(setup: RollingSetup, friction: Friction, start: SetState, sol
         # inexact solves while the slip law is far from settled (the sets and directions
         # change by more than the solve's error); only a tight solve can end the iteration
         tight = tight_solve(misfit, changes, careful, solves.dense(system))
-        N, Sx, Sy, d, om = solves(system, guess, None if tight else FEW_REDUCTION if changed <= FEW_CHANGES
-                                  else LOOSE_REDUCTION)
+        if it == 1 and forces is not None and not tight:
+            # the first solve from forces given (the coarse grid's): to START_REDUCTION |b|
+            N, Sx, Sy, d, om = solves(system, guess, START_REDUCTION, of_b=True)
+        else:
+            N, Sx, Sy, d, om = solves(system, guess, None if tight else FEW_REDUCTION if changed <= FEW_CHANGES
+                                      else LOOSE_REDUCTION)
         v = _measure(setup, contact, stick, N, Sx, Sy, d, om)
         misfit, wx, wy = v.misfit, v.wx, v.wy
         n_contact, n_stick = int(contact.sum()), int((stick & contact).sum())

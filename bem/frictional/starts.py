@@ -119,11 +119,12 @@ def coarse_forces(coarse_result, shape: tuple[int, int], N0: np.ndarray, d0: flo
     frictional minus the coarse frictionless ``below``'s; ``d0`` alone without ``below``),
     ``Omega`` the coarse one.
 
-    Without it the first solve started from zero: its loose GMRES (a fixed reduction of
-    the residual) left the forces about as rough as the start's sets and flipped nodes
-    that the coarse solution had right. Measured (section 11 at 513 x 513, fine-grid
-    active-set / GMRES iterations, the same converged state): 9 / 159 -> 7 / 133; the
-    slip misfit after the first solve 24 -> 1.1.
+    Without it the first solve started from zero and its loose GMRES left the forces rough
+    enough to flip nodes that the coarse solution had right. Measured (section 11 at 513 x
+    513, fine-grid active-set / GMRES iterations, the same converged state): from zero 9 /
+    159; from these forces 7 / 133 (the slip misfit after the first solve 24 -> 1.1), and
+    7 / 121 with that solve asked :data:`~bem.frictional.active_set.START_REDUCTION` of
+    ``|b|`` (the other grids in its comment).
     """
     res = coarse_result
     contact = N0 > 0

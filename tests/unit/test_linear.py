@@ -216,6 +216,39 @@ def test_the_tolerance_is_relative_to_b_or_with_correction_to_the_guess_residual
     assert corr.iterations > 0 and np.linalg.norm(b - A @ x) <= 1e-3 * r0
 
 
+def test_a_correction_call_may_ask_its_tolerance_of_b():
+    """``of_b``: a correction solver's call from a guess stops at ``rtol |b|``, as a call
+    from zero would, not at ``rtol`` times the guess's residual: from a guess with residual
+    1e-4 |b|, asked 1e-6 it ends between 1e-7 and 1e-6 |b| in fewer iterations than the
+    correction (at most 1e-10 |b|); asked 1e-3, more than the guess's residual, it returns
+    the guess in no iteration. The reduction this asks of the guess's residual decides the
+    precision: 2e-2 (at least ``single_from``, 1e-2 here) takes the single-precision
+    product, 5e-3 does not."""
+    A, b = _near_identity(n=60, eps=0.6, seed=6)
+    exact = np.linalg.solve(A, b)
+    rng = np.random.default_rng(8)
+    guess = exact + 1e-4 * np.linalg.norm(exact) * rng.normal(size=b.size) / np.sqrt(b.size)
+    nb, r0 = np.linalg.norm(b), np.linalg.norm(b - A @ guess)
+    assert 3e-5 * nb < r0 < 3e-4 * nb
+    corr = LinearSolver(0, 1e-6, correction=True)
+    x = corr(Dense(A, b), guess)
+    assert np.linalg.norm(b - A @ x) <= 1e-6 * r0
+    of_b = LinearSolver(0, 1e-6, correction=True)
+    x = of_b(Dense(A, b), guess, of_b=True)
+    assert 1e-8 * nb < np.linalg.norm(b - A @ x) <= 1e-6 * nb and 0 < of_b.iterations < corr.iterations
+    done = LinearSolver(0, 1e-3, correction=True)
+    np.testing.assert_array_equal(done(Dense(A, b), guess, of_b=True), guess)
+    assert done.iterations == 0
+    calls = []
+    Single = _with_single(calls)
+    for reduction, single in ((2e-2, True), (5e-3, False)):  # of the guess's residual
+        calls.clear()
+        solver = LinearSolver(0, 1e-10, correction=True, single_from=1e-2)
+        x = solver(Single(A, b), guess, rtol=reduction * r0 / nb, of_b=True)
+        assert solver.iterations > 0 and np.linalg.norm(b - A @ x) <= reduction * r0
+        assert bool(calls) == single and set(calls) <= {np.dtype(np.float32)}
+
+
 def test_the_floor_ends_a_correction_solve_near_rounding():
     """A correction whose residual is already below ``floor |b|`` is not reduced further."""
     A, b = _near_identity(n=60, eps=0.3)

@@ -77,6 +77,7 @@ class ScriptedLayer:
     def __init__(self, respond, ell=None):
         self.respond = respond
         self.states = []
+        self.asked = []  # (reduction, of_b) of each solve
         self.ell = np.full(SIZE, R) if ell is None else ell
         grid = SimpleNamespace(shape=SHAPE, nodes_x=SHAPE[1], nodes_y=SHAPE[0])
         self.setup = SimpleNamespace(ops=SimpleNamespace(grid=grid, fields=self.fields), profile=np.zeros(SIZE),
@@ -87,7 +88,8 @@ class ScriptedLayer:
                                            direction=state.direction.copy()))
         return SimpleNamespace(state=state, unknowns=lambda *a: None)
 
-    def __call__(self, system, guess=None, reduction=None):
+    def __call__(self, system, guess=None, reduction=None, of_b=False):
+        self.asked.append((reduction, of_b))
         N, S, h, w = self.respond(system.state)
         self._fields = (h + D, (w[:, 0] + OMEGA * self.ell) / V - 1.0, w[:, 1] / V)
         return N, S[:, 0].copy(), S[:, 1].copy(), D, OMEGA
@@ -98,10 +100,10 @@ class ScriptedLayer:
     def dense(self, system):
         return False  # solved "iteratively": tight only by the misfit and the sets (tight_solve)
 
-    def run(self, monkeypatch, start, friction=None, lines=None):
+    def run(self, monkeypatch, start, friction=None, lines=None, forces=None):
         monkeypatch.setattr(act, "SetSystem", self.system)
         return act.run_active_set(self.setup, friction or Friction(MU, "omega", omega=OMEGA), start, self,
-                                  None if lines is None else lines.append)
+                                  None if lines is None else lines.append, forces=forces)
 
 
 def _state(contact, stick=(), direction=None):
@@ -283,9 +285,9 @@ class CountingLayer(ScriptedLayer):
         super().__init__(respond)
         self.its = its
 
-    def __call__(self, system, guess=None, reduction=None):
+    def __call__(self, system, guess=None, reduction=None, of_b=False):
         self.iterations += self.its
-        return super().__call__(system, guess, reduction)
+        return super().__call__(system, guess, reduction, of_b)
 
 
 @pytest.mark.parametrize("angle, its, ends", [
@@ -312,3 +314,18 @@ def test_a_tight_solve_at_the_residual_floor_ends_the_iteration(monkeypatch, ang
     out = layer.run(monkeypatch, start, friction)
     assert len(out.history) == ends == len(layer.states)
     assert out.history[-1][2] == pytest.approx(np.sin(angle), rel=1e-6)
+
+
+@pytest.mark.parametrize("given", [False, True])
+def test_the_first_solve_from_given_forces_is_asked_its_tolerance_of_b(monkeypatch, given):
+    """With ``forces`` (the coarse grid's) the first solve asks START_REDUCTION of ``|b|``
+    (``of_b``); the first without them LOOSE_REDUCTION of its own residual, and every later
+    one FEW_REDUCTION of its own (the sets never change; the misfit, every slip velocity
+    30 degrees off its force, stays 0.5: never tight)."""
+    layer = CountingLayer(lambda state: _base(state, np.pi / 6), 5)
+    start = _state(C0, stick=C0[:3])
+    forces = (np.zeros(SIZE), np.zeros(SIZE), np.zeros(SIZE), D, OMEGA) if given else None
+    with pytest.raises(FrictionNotConverged):
+        layer.run(monkeypatch, start, Friction(MU, "omega", omega=OMEGA, max_iter=3), forces=forces)
+    first = (act.START_REDUCTION, True) if given else (act.LOOSE_REDUCTION, False)
+    assert layer.asked == [first, (act.FEW_REDUCTION, False), (act.FEW_REDUCTION, False)]
