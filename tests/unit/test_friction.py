@@ -469,9 +469,9 @@ def test_local_rows_after_a_few_changes_are_kept_only_when_they_change_more(kern
         calls.append((changed.size, out[3]))
         return out
 
-    def call(self, system, guess=None, reduction=None):
+    def call(self, system, guess=None, reduction=None, of_b=False):
         reductions.append(reduction)
-        return real_call(self, system, guess, reduction)
+        return real_call(self, system, guess, reduction, of_b)
 
     monkeypatch.setattr(active_set, "LOCAL_FROM", 1)  # this contact has 67 nodes
     monkeypatch.setattr(active_set, "solve_rows", rows)

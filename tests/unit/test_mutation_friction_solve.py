@@ -861,8 +861,8 @@ def _replay(kernels, setup, friction, start, expect_error=None):
     reductions = []
 
     class Solves(act.LinearSolves):
-        def __call__(self, system, guess=None, reduction=None):
-            out = super().__call__(system, guess, reduction)
+        def __call__(self, system, guess=None, reduction=None, of_b=False):
+            out = super().__call__(system, guess, reduction, of_b)
             sols.append(out)
             reductions.append(reduction)
             return out

@@ -125,7 +125,7 @@ def test_the_row_filter_cuts_gmres_iterations_on_a_converged_state(kernels, monk
     systems = []
     solve = active_set.LinearSolves.__call__
     monkeypatch.setattr(active_set.LinearSolves, "__call__",
-                        lambda self, system, *a: systems.append(system) or solve(self, system, *a))
+                        lambda self, system, *a, **k: systems.append(system) or solve(self, system, *a, **k))
     solve_friction(PROBLEM, FRICTION, kernels=kernels, energy=False)
     system = [s for s in systems if s.ops.grid.shape == GRID.shape][-1]
     assert system.nC > 400 and system.A.size and system.B.size
@@ -153,7 +153,7 @@ def test_the_long_wave_blend_cuts_gmres_iterations_on_longer_runs(monkeypatch):
     systems = []
     solve = active_set.LinearSolves.__call__
     monkeypatch.setattr(active_set.LinearSolves, "__call__",
-                        lambda self, system, *a: systems.append(system) or solve(self, system, *a))
+                        lambda self, system, *a, **k: systems.append(system) or solve(self, system, *a, **k))
     solve_friction(problem, friction, energy=False)
     system = [s for s in systems if s.ops.grid.shape == grid.shape][-1]
     its = {}
