@@ -26,12 +26,18 @@ __all__ = ["solve_friction", "solve_rolling", "COARSE_SETTLE", "START_RTOL", "OV
 
 #: a coarse level of the start ends once its sets repeat and its slip misfit is at most
 #: this (-), without the tight solve (:func:`run_active_set`'s ``settle``): the fine grid
-#: reads only its sets, slip directions and slip speeds. Measured (active-set / GMRES
+#: reads its sets, slip directions and slip speeds, and its forces as a first iterate. Measured (active-set / GMRES
 #: iterations of the coarse levels, converged to 1e-7 -> settled at 0.1; the fine grid's
 #: iterations within 2 GMRES, the same converged state): issue-11 case 121 x 121, 61 x 61
 #: level 5 / 87 -> 3 / 44 and 31 x 31 level 11 / 122 -> 9 / 91; section 11 at 129 x 129,
-#: 65 x 65 level 7 / 108 -> 5 / 71 and 33 x 33 level 6 / 90 -> 4 / 56
-COARSE_SETTLE = 0.1
+#: 65 x 65 level 7 / 108 -> 5 / 71 and 33 x 33 level 6 / 90 -> 4 / 56. Since the coarse
+#: forces start the fine grid's first solve (session 31), 0.1 -> 0.3: one coarse iteration
+#: fewer on five of the six benchmark grids (coarse iterations / GMRES, all levels: issue-11
+#: case 61 x 61 7 / 17 -> 6 / 17, 121 x 121 9 / 58 -> 8 / 55; section 11 at 129 x 129
+#: 10 / 56 -> 9 / 54, 257 x 257 10 / 73 -> 9 / 69, 513 x 513 16 -> 15; 41 x 41 5 / 30
+#: both) and the fine grids' iterations unchanged on all six; 1.0 saved one more at 121 x
+#: 121, 129 x 129 and 513 x 513 but cost the fine 41 x 41 grid a GMRES iteration
+COARSE_SETTLE = 0.3
 #: GMRES tolerance of the frictionless solve that starts a frictional one (-, relative to
 #: ``|b|``; the frictionless result itself, ``mu = 0``, keeps ``solve_normal``'s 1e-11):
 #: the start reads its contact set and forces. Measured (frictionless solve alone, 1e-11

@@ -1251,8 +1251,8 @@ def test_coarse_level_settles_without_the_tight_solve(big_kernels, monkeypatch):
     p, friction = problem(grid=BIG), MODES[3]  # omega = 0.99 V / R: the coarse level slips
     settled, _ = solve_friction(p, friction, kernels=big_kernels, energy=False)
     (cshape, csettle, chist), (fshape, fsettle, _) = calls
-    assert (cshape, csettle, fshape, fsettle) == ((13, 13), 0.1, (25, 25), None) and fs.COARSE_SETTLE == 0.1
-    assert friction.direction_tol < chist[-1][2] <= 0.1
+    assert (cshape, csettle, fshape, fsettle) == ((13, 13), 0.3, (25, 25), None) and fs.COARSE_SETTLE == 0.3
+    assert friction.direction_tol < chist[-1][2] <= 0.3
     calls.clear()
     monkeypatch.setattr(fs, "COARSE_SETTLE", None)
     full, _ = solve_friction(p, friction, kernels=big_kernels, energy=False)
