@@ -262,12 +262,11 @@ def run_active_set(setup: RollingSetup, friction: Friction, start: SetState, sol
         # inexact solves while the slip law is far from settled (the sets and directions
         # change by more than the solve's error); only a tight solve can end the iteration
         tight = tight_solve(misfit, changes, careful, solves.dense(system))
-        if it == 1 and forces is not None and not tight:
-            # the first solve from forces given (the coarse grid's): to START_REDUCTION |b|
-            N, Sx, Sy, d, om = solves(system, guess, START_REDUCTION, of_b=True)
-        else:
-            N, Sx, Sy, d, om = solves(system, guess, None if tight else FEW_REDUCTION if changed <= FEW_CHANGES
-                                      else LOOSE_REDUCTION)
+        # the first solve from forces given (the coarse grid's) asks START_REDUCTION of |b|
+        first = it == 1 and forces is not None and not tight
+        reduction = (START_REDUCTION if first else None if tight else FEW_REDUCTION if changed <= FEW_CHANGES
+                     else LOOSE_REDUCTION)
+        N, Sx, Sy, d, om = solves(system, guess, reduction, of_b=first)
         v = _measure(setup, contact, stick, N, Sx, Sy, d, om)
         misfit, wx, wy = v.misfit, v.wx, v.wy
         n_contact, n_stick = int(contact.sum()), int((stick & contact).sum())

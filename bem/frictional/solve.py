@@ -26,7 +26,8 @@ __all__ = ["solve_friction", "solve_rolling", "COARSE_SETTLE", "START_RTOL", "OV
 
 #: a coarse level of the start ends once its sets repeat and its slip misfit is at most
 #: this (-), without the tight solve (:func:`run_active_set`'s ``settle``): the fine grid
-#: reads its sets, slip directions and slip speeds, and its forces as a first iterate. Measured (active-set / GMRES
+#: reads its sets, slip directions and slip speeds, and its forces as a first iterate.
+#: Measured (active-set / GMRES
 #: iterations of the coarse levels, converged to 1e-7 -> settled at 0.1; the fine grid's
 #: iterations within 2 GMRES, the same converged state): issue-11 case 121 x 121, 61 x 61
 #: level 5 / 87 -> 3 / 44 and 31 x 31 level 11 / 122 -> 9 / 91; section 11 at 129 x 129,

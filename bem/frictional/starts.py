@@ -13,7 +13,7 @@ from ..friction import Friction, FrictionNotConverged
 from .active_set import ActiveSetResult, LinearSolves, run_active_set
 from .system import RollingSetup, SetState
 
-__all__ = ["frictionless_start", "saturation_creepage", "coarse_start", "coarse_forces", "continuation"]
+__all__ = ["frictionless_start", "saturation_creepage", "coarse_start", "prolong", "coarse_forces", "continuation"]
 
 
 def frictionless_start(N0: np.ndarray, ell: np.ndarray, speed: float, friction: Friction,
