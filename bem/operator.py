@@ -8,12 +8,14 @@ grids, or a node subset).
 
 from __future__ import annotations
 
+from contextlib import contextmanager
+
 import numpy as np
 import scipy.fft as sfft
 
 from .grid import Grid
 
-__all__ = ["ComplianceOperator", "THREADED_FROM", "fft_workers"]
+__all__ = ["ComplianceOperator", "THREADED_FROM", "fft_workers", "one_worker"]
 
 #: FFTs of an embedding with this many points or more run on every core, smaller ones on
 #: one (a small transform costs less than handing it over). Measured, whole solves with the
@@ -25,10 +27,28 @@ __all__ = ["ComplianceOperator", "THREADED_FROM", "fft_workers"]
 THREADED_FROM = 100_000
 
 
+_ONE_WORKER = 0  # depth of the one_worker() blocks open
+
+
 def fft_workers(shape: tuple[int, int]) -> int:
     """Threads for the transforms of an embedding of ``shape``: ``-1`` (every core) from
-    :data:`THREADED_FROM` points on, 1 below."""
-    return -1 if shape[0] * shape[1] >= THREADED_FROM else 1
+    :data:`THREADED_FROM` points on, 1 below, and 1 inside :func:`one_worker`."""
+    return -1 if shape[0] * shape[1] >= THREADED_FROM and not _ONE_WORKER else 1
+
+
+@contextmanager
+def one_worker():
+    """Every transform on one thread while the block runs, on every thread: for two threads
+    that solve side by side (the frictional solver's coarse levels and its frictionless
+    start), each then on its own core instead of four transform threads on two cores.
+    Measured (section 11 at 513 x 513, whole frictional solves alternated with and without,
+    ``benchmarks/bem_friction_rolling.py``): see ``BENCHMARKS.md``, seventeenth pass."""
+    global _ONE_WORKER
+    _ONE_WORKER += 1
+    try:
+        yield
+    finally:
+        _ONE_WORKER -= 1
 
 
 class ComplianceOperator:
@@ -52,8 +72,12 @@ class ComplianceOperator:
         dy = np.arange(-(Ky - 1), Ky) % self._size[0]
         dx = np.arange(-(Kx - 1), Kx) % self._size[1]
         circ[np.ix_(dy, dx)] = kernel
-        self._workers = fft_workers(self._size)
         self._hat = sfft.rfft2(circ, workers=self._workers)
+
+    @property
+    def _workers(self) -> int:
+        """Threads of this embedding's transforms, :func:`fft_workers` at each call."""
+        return fft_workers(self._size)
 
     @property
     def embedding(self) -> tuple[int, int]:

@@ -186,8 +186,8 @@ class LinearSolves:
     def prepare(self, system: SetSystem) -> None:
         """Build ahead what the solves of ``system``'s contact set share (the line
         preconditioner's row inverses and row filter, the spectra of the products in both
-        precisions, the grid's fields), e.g. on an idle thread: the first solve then starts
-        sooner. Nothing for a dense system. (Not the Schur parts of ``d`` and ``Omega``:
+        precisions; not the whole grid's field spectra, which the caller builds while this
+        runs), e.g. on an idle thread: the first solve then starts sooner. Nothing for a dense system. (Not the Schur parts of ``d`` and ``Omega``:
         from an all-stick state they differ a little from the first state's, and that
         moved the active set's path: 121 x 121 issue case 7 iterations instead of 5.)"""
         if self.dense(system):
@@ -196,8 +196,6 @@ class LinearSolves:
         zero = np.zeros(system.n)
         system.matvec(zero)
         system.matvec_single(zero)
-        grid = system.ops.grid
-        system.ops.fields(*(np.zeros(grid.shape),) * 3)
 
     def __call__(self, system: SetSystem, guess=None, reduction: float | None = None, of_b: bool = False):
         if not self.dense(system):

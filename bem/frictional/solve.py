@@ -14,6 +14,7 @@ from ..contact import ContactError, NormalContact, coarse_grid, coarse_solution,
 from ..energy import viscous_dissipation
 from ..friction import Friction, FrictionalContact, FrictionNotConverged, FrictionRecord, LoadingUnreachable
 from ..kinematics import indenter_radius, rolling_radius
+from ..operator import one_worker
 from ..problem import Problem, compute_kernels
 from ..spectral import BLOCKS
 from .active_set import ActiveSetResult, LinearSolves, run_active_set
@@ -196,10 +197,13 @@ def _first_solves(setup: RollingSetup, friction: Friction, normal: NormalContact
     if normal is None and mu > 0 and g.nodes_x * g.nodes_y >= OVERLAP_FROM:
         below = coarse_solution(ww, profile, **kw)
         if below is not None:
-            with ThreadPoolExecutor(1, thread_name_prefix="frictionless-start") as pool:
+            with one_worker(), ThreadPoolExecutor(1, thread_name_prefix="frictionless-start") as pool:
                 job = pool.submit(_frictionless_prepared, setup, solves, ww, profile, below, kw)
                 try:
                     coarse = _coarse_solution(setup, friction, progress, below)
+                    # the grid's field spectra, which the first fine measure reads, while the
+                    # second thread ends its solve and preparation
+                    ops.fields(*(np.zeros(g.shape),) * 3)
                 finally:
                     normal = job.result()
             return normal, coarse

@@ -345,16 +345,30 @@ def test_the_frictionless_start_on_a_second_thread_changes_nothing(big_kernels, 
     """From OVERLAP_FROM nodes on, the fine frictionless solve runs on a second thread
     while the coarse levels solve, from the coarse frictionless solution solved first
     (once: the coarse level is handed it): the result is bit for bit the one-thread
-    result, the fine solves' preconditioner prepared there on the frictionless contact;
-    below OVERLAP_FROM everything runs on the caller's thread."""
+    result, the fine solves' preconditioner prepared there on the frictionless contact,
+    the transforms of both threads on one worker each meanwhile (``one_worker``), and the
+    fine grid's field spectra built on the caller's thread; below OVERLAP_FROM everything
+    runs on the caller's thread."""
     import threading
 
     import bem.frictional.solve as fs
+    from bem import operator as op_module
+    from bem.frictional.operators import RollingOperators
 
     real_normal = fs.solve_normal
     calls = []
+    workers = []
+    real_fields = RollingOperators.fields
+
+    def fields(self, *a):
+        if self.grid.shape == (25, 25) and not self._stacked:  # the fine grid's first
+            workers.append((threading.current_thread() is threading.main_thread(), op_module._ONE_WORKER))
+        return real_fields(self, *a)
+
+    monkeypatch.setattr(RollingOperators, "fields", fields)
 
     def spy(op, *args, **kw):
+        workers.append(op_module._ONE_WORKER)
         calls.append((op.grid.shape, threading.current_thread() is threading.main_thread(), kw.get("coarse")))
         if not calls[-1][1]:
             names.append(threading.current_thread().name)
@@ -380,7 +394,11 @@ def test_the_frictionless_start_on_a_second_thread_changes_nothing(big_kernels, 
                          self.lines.inverses, system.stick.all()))
 
     monkeypatch.setattr(fs.LinearSolves, "prepare", prepare)
+    workers.clear()
     two, _ = solve_friction(problem(grid=BIG), friction, kernels=big_kernels, energy=False)
+    # the fine frictionless solve (second thread) and the fine fields' spectra (the caller's
+    # thread, before the fine grid's first measure) on one worker each, every core after
+    assert sorted(workers, key=str) == [(True, 1), 1] and op_module._ONE_WORKER == 0
     (shape, main, coarse), = calls
     assert shape == (25, 25) and not main and coarse is not None and coarse.grid.shape == (13, 13)
     assert names == ["frictionless-start_0"]

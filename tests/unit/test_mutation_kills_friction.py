@@ -1138,24 +1138,38 @@ def test_frictional_contact_derived_fields_by_hand():
 
 def test_transforms_go_threaded_from_the_threshold():
     """``fft_workers``: one thread below ``THREADED_FROM`` embedding points, every core from
-    there on; a ComplianceOperator keeps its embedding's choice, and its product is the same
-    bit for bit either way."""
+    there on, one inside ``one_worker`` (nested, and after an error, restored on leaving);
+    a ComplianceOperator asks at each product, and its product is the same bit for bit
+    either way."""
     from bem import operator as op_module
-    from bem.operator import THREADED_FROM, ComplianceOperator, fft_workers
+    from bem.operator import THREADED_FROM, ComplianceOperator, fft_workers, one_worker
 
     assert THREADED_FROM == 100_000
     assert fft_workers((100, 1000)) == -1 and fft_workers((100, 999)) == 1 and fft_workers((1, 1)) == 1
+    with one_worker():
+        assert fft_workers((100, 1000)) == 1
+        with one_worker():
+            assert fft_workers((1000, 1000)) == 1
+        assert fft_workers((100, 1000)) == 1
+    with pytest.raises(KeyError):
+        with one_worker():
+            raise KeyError
+    assert fft_workers((100, 1000)) == -1
     kern = _random_kernels(SMALL, seed=21)["ww"]
     F = np.random.default_rng(22).normal(size=SMALL.shape)
-    one = ComplianceOperator(SMALL, kern)
+    op = ComplianceOperator(SMALL, kern)
+    assert op._workers == 1
+    one = op.apply(F)
     kept = op_module.THREADED_FROM
     try:
         op_module.THREADED_FROM = 0
-        every = ComplianceOperator(SMALL, kern)
+        assert op._workers == -1
+        every = op.apply(F)
+        with one_worker():
+            assert op._workers == 1
     finally:
         op_module.THREADED_FROM = kept
-    assert one._workers == 1 and every._workers == -1
-    np.testing.assert_array_equal(one.apply(F), every.apply(F))
+    np.testing.assert_array_equal(one, every)
 
 
 def test_the_single_precision_product_is_single_and_close(kernels):
