@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import threading
 import time
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import replace
@@ -188,7 +189,12 @@ def _first_solves(setup: RollingSetup, friction: Friction, normal: NormalContact
     on every other node; when the first is still to solve it runs on a second thread
     while the coarse levels solve (the transforms and products release the GIL), and
     that thread then builds what ``solves`` will need on its contact set
-    (:meth:`LinearSolves.prepare`)."""
+    (:meth:`LinearSolves.prepare`); the grid's field spectra are built by the thread free
+    first (this one at 513 x 513, the second below: the coarse levels end last there). Both
+    threads meanwhile transform on one worker each (:func:`bem.operator.one_worker`):
+    with every core each, four transform threads shared two cores, and at 513 x 513 the
+    coarse levels ended 2.4 s later and the fine frictionless solve took 5.2 s instead of
+    3.9 s (one run each; alternated whole solves: ``BENCHMARKS.md``, seventeenth pass)."""
     ops, mu = setup.ops, friction.mu
     g = ops.grid
     ww, profile = ops.op("ww"), setup.profile
@@ -197,13 +203,19 @@ def _first_solves(setup: RollingSetup, friction: Friction, normal: NormalContact
     if normal is None and mu > 0 and g.nodes_x * g.nodes_y >= OVERLAP_FROM:
         below = coarse_solution(ww, profile, **kw)
         if below is not None:
+            # the grid's field spectra, which the first fine measure reads, built by the
+            # thread that is free first (the other one skips them)
+            once = threading.Lock()
+
+            def fields():
+                if once.acquire(blocking=False):
+                    ops.fields(*(np.zeros(g.shape),) * 3)
+
             with one_worker(), ThreadPoolExecutor(1, thread_name_prefix="frictionless-start") as pool:
-                job = pool.submit(_frictionless_prepared, setup, solves, ww, profile, below, kw)
+                job = pool.submit(_frictionless_prepared, setup, solves, ww, profile, below, kw, fields)
                 try:
                     coarse = _coarse_solution(setup, friction, progress, below)
-                    # the grid's field spectra, which the first fine measure reads, while the
-                    # second thread ends its solve and preparation
-                    ops.fields(*(np.zeros(g.shape),) * 3)
+                    fields()
                 finally:
                     normal = job.result()
             return normal, coarse
@@ -212,15 +224,17 @@ def _first_solves(setup: RollingSetup, friction: Friction, normal: NormalContact
     return normal, (_coarse_solution(setup, friction, progress, normal.coarse) if mu > 0 else None)
 
 
-def _frictionless_prepared(setup: RollingSetup, solves: LinearSolves, ww, profile, below, kw) -> NormalContact:
+def _frictionless_prepared(setup: RollingSetup, solves: LinearSolves, ww, profile, below, kw,
+                           then: Callable[[], None]) -> NormalContact:
     """:func:`solve_normal` from the coarse solution ``below``, then ``solves`` prepared
-    for the system of its contact set (all in stick)."""
+    for the system of its contact set (all in stick), then ``then()``."""
     normal = solve_normal(ww, profile, coarse=below, **kw)
     contact = normal.force.ravel() > 0
     if contact.any():
         zero = np.zeros(contact.size)
         solves.prepare(SetSystem(setup, SetState(contact=contact, stick=contact, direction=np.zeros((zero.size, 2)),
                                                  slope=zero)))
+    then()
     return normal
 
 

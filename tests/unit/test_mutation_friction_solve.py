@@ -347,8 +347,8 @@ def test_the_frictionless_start_on_a_second_thread_changes_nothing(big_kernels, 
     (once: the coarse level is handed it): the result is bit for bit the one-thread
     result, the fine solves' preconditioner prepared there on the frictionless contact,
     the transforms of both threads on one worker each meanwhile (``one_worker``), and the
-    fine grid's field spectra built on the caller's thread; below OVERLAP_FROM everything
-    runs on the caller's thread."""
+    fine grid's field spectra built once, by the thread free first; below OVERLAP_FROM
+    everything runs on the caller's thread."""
     import threading
 
     import bem.frictional.solve as fs
@@ -361,7 +361,7 @@ def test_the_frictionless_start_on_a_second_thread_changes_nothing(big_kernels, 
     real_fields = RollingOperators.fields
 
     def fields(self, *a):
-        if self.grid.shape == (25, 25) and not self._stacked:  # the fine grid's first
+        if self.grid.shape == (25, 25) and not any(np.any(f) for f in a):  # the spectra's build
             workers.append((threading.current_thread() is threading.main_thread(), op_module._ONE_WORKER))
         return real_fields(self, *a)
 
@@ -396,9 +396,10 @@ def test_the_frictionless_start_on_a_second_thread_changes_nothing(big_kernels, 
     monkeypatch.setattr(fs.LinearSolves, "prepare", prepare)
     workers.clear()
     two, _ = solve_friction(problem(grid=BIG), friction, kernels=big_kernels, energy=False)
-    # the fine frictionless solve (second thread) and the fine fields' spectra (the caller's
-    # thread, before the fine grid's first measure) on one worker each, every core after
-    assert sorted(workers, key=str) == [(True, 1), 1] and op_module._ONE_WORKER == 0
+    # the fine frictionless solve (second thread) and the fine fields' spectra (built once,
+    # by either thread, before the fine grid's first measure) on one worker each, every
+    # core after
+    assert sorted(workers, key=str) in ([(False, 1), 1], [(True, 1), 1]) and op_module._ONE_WORKER == 0
     (shape, main, coarse), = calls
     assert shape == (25, 25) and not main and coarse is not None and coarse.grid.shape == (13, 13)
     assert names == ["frictionless-start_0"]
