@@ -186,10 +186,12 @@ class LinearSolves:
     def prepare(self, system: SetSystem) -> None:
         """Build ahead what the solves of ``system``'s contact set share (the line
         preconditioner's row inverses and row filter, the spectra of the products in both
-        precisions; not the whole grid's field spectra, which the caller builds while this
-        runs), e.g. on an idle thread: the first solve then starts sooner. Nothing for a dense system. (Not the Schur parts of ``d`` and ``Omega``:
-        from an all-stick state they differ a little from the first state's, and that
-        moved the active set's path: 121 x 121 issue case 7 iterations instead of 5.)"""
+        precisions; not the whole grid's field spectra: :func:`bem.frictional.solve.
+        _first_solves` has them built by whichever thread is free first), e.g. on an idle
+        thread: the first solve then starts sooner. Nothing for a dense system. (Not the
+        Schur parts of ``d`` and ``Omega``: from an all-stick state they differ a little
+        from the first state's, and that moved the active set's path: 121 x 121 issue case
+        7 iterations instead of 5.)"""
         if self.dense(system):
             return
         self.lines.prepare(system)
