@@ -6,8 +6,10 @@ Modules, one concept each:
 * :mod:`~bem.frictional.operators`: the nine compliance blocks, FFT products and dense blocks;
 * :mod:`~bem.frictional.system`: the sets (:class:`SetState`), what stays fixed
   (:class:`RollingSetup`) and the linear system of one state (:class:`SetSystem`);
+* :mod:`~bem.frictional.toeplitz`: the inverses of a grid row's Toeplitz blocks for every
+  run length (Levinson, Gohberg-Semencul), by FFT or as matrices;
 * :mod:`~bem.frictional.preconditioner`: exact solves on runs of contact nodes along ``x``
-  (Toeplitz blocks by FFT, the slip rows by Woodbury);
+  (those inverses, the slip rows by Woodbury, the row filter);
 * :mod:`~bem.frictional.active_set`: the iteration on the sets;
 * :mod:`~bem.frictional.loading`: the loading modes' equilibrium rows;
 * :mod:`~bem.frictional.starts`: frictionless and coarse-grid starts, continuation in ``mu``;

@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 
 from bem.friction import LoadingUnreachable
+from bem.frictional import toeplitz
 from bem.frictional.loading import check_reachable, constraint
 
 RNG = np.random.default_rng(7)
@@ -401,7 +402,7 @@ def test_levinson_gives_the_first_and_last_columns_for_every_length(kernels):
     nonsymmetric in a moving frame): measured 1e-15 relative, 1e-12 allowed; a singular
     leading block is an error naming its size."""
     from bem.frictional import RollingOperators
-    from bem.frictional.preconditioner import levinson
+    from bem.frictional.toeplitz import levinson
 
     ops = RollingOperators(GRID, kernels)
     Ky, Kx = GRID.shape
@@ -438,7 +439,7 @@ def test_row_inverses_solve_the_runs_toeplitz_systems(kernels, threads, dense, M
     their length; the transform is at least ``2 M - 1`` long (no wrap), and two threads
     give the same bits as one; an odd transform length (``M = 13``: 25) as an even one."""
     from bem.frictional import RollingOperators
-    from bem.frictional.preconditioner import DENSE_UPTO, RowInverses
+    from bem.frictional.toeplitz import DENSE_UPTO, RowInverses
 
     ops = RollingOperators(GRID, kernels)
     Ky, Kx = GRID.shape
@@ -453,7 +454,7 @@ def test_row_inverses_solve_the_runs_toeplitz_systems(kernels, threads, dense, M
     assert (RowInverses(ops, 16).matrices is not None) == (16 <= DENSE_UPTO)
     from bem.frictional import preconditioner
     with pytest.MonkeyPatch.context() as m:  # dense up to DENSE_UPTO nodes inclusive
-        m.setattr(preconditioner, "DENSE_UPTO", M)
+        m.setattr(toeplitz, "DENSE_UPTO", M)
         assert RowInverses(ops, M).matrices is not None and RowInverses(ops, M + 1).matrices is None
     lens = np.array([1, 2, 7, M, 9, M])
     pos = np.array([[0, 0], [1, 0], [6, 2], [M - 1, 3], [4, 8], [0, 9]])
@@ -495,7 +496,7 @@ def test_line_preconditioner_is_the_inverse_of_its_run_blocks(kernels, monkeypat
     from bem.frictional import preconditioner
     from bem.frictional.preconditioner import LinePreconditioner
 
-    monkeypatch.setattr(preconditioner, "DENSE_UPTO", dense_upto)
+    monkeypatch.setattr(toeplitz, "DENSE_UPTO", dense_upto)
 
     system = _system(kernels)
     if hole:
@@ -555,17 +556,17 @@ def test_line_preconditioner_on_two_threads_gives_the_same_result(kernels, monke
     it stays on one."""
     import bem.frictional.preconditioner as P
 
-    monkeypatch.setattr(P, "DENSE_UPTO", dense_upto)
+    monkeypatch.setattr(toeplitz, "DENSE_UPTO", dense_upto)
     system = _system(kernels)
     x = np.random.default_rng(3).normal(size=system.n)
     one = P.LinePreconditioner(threads=False)
     with monkeypatch.context() as m:
-        m.setattr(P, "_second_thread", lambda: pytest.fail("a second thread with threads=False"))
+        m.setattr(toeplitz, "second_thread", lambda: pytest.fail("a second thread with threads=False"))
         one.attach(system)
         want = system.precondition(x)
     used = []
-    real = P._second_thread
-    monkeypatch.setattr(P, "_second_thread", lambda: used.append(1) or real())
+    real = toeplitz.second_thread
+    monkeypatch.setattr(toeplitz, "second_thread", lambda: used.append(1) or real())
     monkeypatch.setattr(P, "THREAD_FROM", 0)
     P.LinePreconditioner().attach(system)
     built = len(used)
@@ -605,7 +606,7 @@ def test_a_forked_child_builds_and_applies_on_its_own_second_thread(kernels, mon
     parent = P.LinePreconditioner()
     parent.attach(system)
     np.testing.assert_array_equal(system.precondition(x), want)
-    assert P._POOL is not None  # the parent's thread is running
+    assert toeplitz._POOL is not None  # the parent's thread is running
     ctx = multiprocessing.get_context("fork")
     receive, send = ctx.Pipe(duplex=False)
     child = ctx.Process(target=_two_threads_in_child, args=(system, x, want, send))
@@ -669,8 +670,8 @@ def test_line_preconditioner_keeps_its_row_inverses_while_they_fit(kernels, monk
     assert pre._row_inverses(system.ops, 23) is wider
     assert pre._row_inverses(_system(kernels).ops, 5) is not wider
     seen = []
-    solve = P.RowInverses.solve
-    monkeypatch.setattr(P.RowInverses, "solve", lambda self, op, v, threads=False: seen.append(
+    solve = toeplitz.RowInverses.solve
+    monkeypatch.setattr(toeplitz.RowInverses, "solve", lambda self, op, v, threads=False: seen.append(
         (op.dtype, v.dtype)) or solve(self, op, v, threads))
     box = system.box
     row_filter = box.row_filter
@@ -678,7 +679,7 @@ def test_line_preconditioner_keeps_its_row_inverses_while_they_fit(kernels, monk
     monkeypatch.setattr(box, "row_filter", lambda power, dtype, **blend: blends.append(blend) or seen.append(
         np.dtype(dtype)) or row_filter(power, dtype, **blend))
     for dense_upto in (0, 96):
-        monkeypatch.setattr(P, "DENSE_UPTO", dense_upto)
+        monkeypatch.setattr(toeplitz, "DENSE_UPTO", dense_upto)
         seen.clear()
         P.LinePreconditioner().attach(system)
         system.precondition(np.ones(system.n))
