@@ -243,7 +243,7 @@ class LinePreconditioner:
 
         def correct(Z, c, qs):
             for (members, *_, Y), q in zip(groups, qs):
-                Z[c, members] -= np.matmul(q[:, c, None], Y[:, c])[:, 0]
+                Z[c, members] -= np.matmul(q[:, c, None], Y[c])[:, 0]
 
         def forces(r):
             """The lines (and the row filter) on the force rows ``r[:3 nC]``."""
@@ -307,7 +307,7 @@ class LinePreconditioner:
         ``P``): ``[(members, at, where, G^{-1}, H^{-1} or K^{-1}, e_x, e_y, Y)]`` for the runs
         ``members`` (``L``), with ``G^{-1}`` ``(L, 2, P, P)`` the inverses of ``G_x, G_y``,
         ``H^{-1}`` ``(L, P, P)`` (or, for ``P <=`` :data:`COMPOSE_UPTO`, ``K^{-1}`` ``(L, 2 P,
-        2 P)`` itself, composed from them), the slip directions ``(L, P)``, ``Y`` ``(L, 2, P,
+        2 P)`` itself, composed from them), the slip directions ``(L, P)``, ``Y`` ``(2, L, P,
         M)`` the runs' Toeplitz inverses' columns at their slip nodes (``x`` then ``y``, as
         rows), all in ``dtype``, 0 (identity blocks) on padding; ``where`` the slip rows (``x``
         rows, then the ``y`` rows) and ``at`` their flat places in ``(L, 2 P)``.
@@ -341,9 +341,9 @@ class LinePreconditioner:
         found = np.searchsorted(old_keys, uniq)
         have = found < old_keys.size
         have[have] = old_keys[found[have]] == uniq[have]
-        columns = np.empty((uniq.size, 2, M), self.dtype)
+        columns = np.empty((2, uniq.size, M), self.dtype)  # x then y blocks
         if have.any():
-            columns[have] = old_cols[found[have]]
+            columns[:, have] = old_cols[:, found[have]]
         todo = np.flatnonzero(~have)
         if todo.size:
             # the missing columns, one row of positions per run length (padded), lengths with
@@ -366,7 +366,7 @@ class LinePreconditioner:
                 cols = [inv.columns(1 + b, lengths[part], pos, self.dtype, two) for b in (0, 1)]
                 filled = dest >= 0
                 for b in (0, 1):
-                    columns[dest[filled], b] = cols[b][filled]
+                    columns[b, dest[filled]] = cols[b][filled]
             self.factorised += todo.size
         self._columns = (uniq, columns)
         ex, ey, kk = system.dir_x, system.dir_y, system.slope
@@ -380,8 +380,11 @@ class LinePreconditioner:
             p = count[members]
             valid = np.arange(P) < p[:, None]  # (L, P): the slip nodes of each run, then padding
             s = np.where(valid, first[members][:, None] + np.arange(P), 0)  # their slip indices
-            Y = np.empty((L, 2, P, M), self.dtype)  # the columns as rows, 0 on padding
-            np.multiply(columns[which[s]].swapaxes(1, 2), valid[:, None, :, None], out=Y)
+            # the columns as rows, gathered in one pass per block, 0 on padding
+            Y = np.empty((2, L, P, M), self.dtype)
+            for b in (0, 1):
+                np.take(columns[b], which[s], axis=0, out=Y[b], mode="clip")
+            Y[:, ~valid] = 0
             loc = np.where(valid, local[s], 0)
             # the inverses of G_x, G_y depend on the run's length and slip places alone: kept
             # (the length as 8 bytes: bytes(n) would be n zero bytes, and a run of length n with
@@ -397,8 +400,9 @@ class LinePreconditioner:
                 # G[i, j]: row P_i of column P_j of the runs' Toeplitz inverses; the identity
                 # on padding
                 vf = valid[fresh]
-                lf = np.broadcast_to(loc[fresh][:, None, None, :], (vf.shape[0], 2, P, P))
-                G = np.take_along_axis(Y[fresh], lf, 3).swapaxes(2, 3) * vf[:, None, None, :] * vf[:, None, :, None]
+                lf = np.broadcast_to(loc[fresh][None, :, None, :], (2, vf.shape[0], P, P))
+                G = (np.take_along_axis(Y[:, fresh], lf, 3).transpose(1, 0, 3, 2)
+                     * vf[:, None, None, :] * vf[:, None, :, None])
                 G[:, :, np.arange(P), np.arange(P)] += ~vf[:, None, :]
             e1, e2, k1 = (np.where(valid, a[s], 0.0) for a in (ex, ey, kk))
             both = np.concatenate([valid, valid], 1)
@@ -431,7 +435,7 @@ class LinePreconditioner:
                 g["H"] = np.concatenate([Gi[:, 0] @ top, Gi[:, 1] @ bot], 1)
 
         # on two threads, about equal flops each
-        cost = [g["Y"].shape[0] * g["Y"].shape[2] ** 3 for g in groups]
+        cost = [g["Y"].shape[1] * g["Y"].shape[2] ** 3 for g in groups]
         halves, load = ([], []), [0, 0]
         for i in np.argsort(cost)[::-1]:
             k = int(load[1] < load[0])
