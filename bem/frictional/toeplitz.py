@@ -38,28 +38,37 @@ def levinson(t: np.ndarray, M: int) -> tuple[np.ndarray, np.ndarray]:
     first ``n`` entries. Levinson's recursion for a nonsymmetric matrix, ``O(M^2)``: with
     ``x, y`` the columns of size ``n``, ``[x; 0]`` and ``[0; y]`` solve ``T_{n+1}`` up to one
     residual entry each, and their two combinations that cancel it are the columns of size
-    ``n + 1``. Raises :class:`numpy.linalg.LinAlgError` when a leading block is singular to
-    working precision (the recursion needs every one regular)."""
-    c = M - 1
-    first, last = np.zeros((M, M)), np.zeros((M, M))
-    if t[c] == 0:
-        raise np.linalg.LinAlgError("Levinson's recursion: zero diagonal")
-    first[0, 0] = last[0, 0] = 1.0 / t[c]
+    ``n + 1``. ``t`` may hold several matrices, ``(B, 2 M - 1)``: all run in the same loop
+    and the arrays are ``(B, M, M)``. Raises :class:`numpy.linalg.LinAlgError` when a leading
+    block is singular to working precision (the recursion needs every one regular); with
+    several matrices its ``system`` attribute is the index of the first such one."""
+    t = np.asarray(t, float)
+    T = t.reshape(-1, t.shape[-1])
+    B, c = T.shape[0], M - 1
+    first, last = np.zeros((B, M, M)), np.zeros((B, M, M))
+
+    def fail(message, bad):
+        exc = np.linalg.LinAlgError(message)
+        exc.system = int(np.flatnonzero(bad)[0])
+        return exc
+
+    if (T[:, c] == 0).any():
+        raise fail("Levinson's recursion: zero diagonal", T[:, c] == 0)
+    first[:, 0, 0] = last[:, 0, 0] = 1.0 / T[:, c]
     for n in range(1, M):
-        x, y = first[n - 1, :n], last[n - 1, :n]
-        j = np.arange(n)
-        ex = t[c + n - j] @ x  # row n of T_{n+1} on [x; 0]
-        ey = t[c - 1 - j] @ y  # row 0 of T_{n+1} on [0; y]
+        x, y = first[:, n - 1, :n], last[:, n - 1, :n]
+        ex = np.einsum("bj,bj->b", T[:, c + n:c:-1], x)  # row n of T_{n+1} on [x; 0]
+        ey = np.einsum("bj,bj->b", T[:, c - 1::-1][:, :n], y)  # row 0 of T_{n+1} on [0; y]
         den = 1.0 - ex * ey
-        if abs(den) < 1e-12:
-            raise np.linalg.LinAlgError(f"Levinson's recursion: the leading {n + 1} x {n + 1} block is singular")
-        first[n, :n] = x
-        first[n, 1:n + 1] -= ex * y
-        last[n, 1:n + 1] = y
-        last[n, :n] -= ey * x
-        first[n, :n + 1] /= den
-        last[n, :n + 1] /= den
-    return first, last
+        if (np.abs(den) < 1e-12).any():
+            raise fail(f"Levinson's recursion: the leading {n + 1} x {n + 1} block is singular", np.abs(den) < 1e-12)
+        first[:, n, :n] = x
+        first[:, n, 1:n + 1] -= ex[:, None] * y
+        last[:, n, 1:n + 1] = y
+        last[:, n, :n] -= ey[:, None] * x
+        first[:, n, :n + 1] /= den[:, None]
+        last[:, n, :n + 1] /= den[:, None]
+    return (first[0], last[0]) if t.ndim == 1 else (first, last)
 
 
 class RowInverses:
@@ -105,32 +114,36 @@ class RowInverses:
         dense = M <= DENSE_UPTO if dense is None else dense
         self.spectra = None if dense else np.empty((3, 4, M, F // 2 + 1), complex)
         self.matrices = np.empty((3, M, M, M)) if dense else None
-        for b, name in enumerate(self.BLOCKS):
-            t = (1.0 if name == "ww" else ax) * ops.tables[name][Ky - 1, Kx - M:Kx - 1 + M]
-            try:
-                x, y = levinson(t, M)
-            except np.linalg.LinAlgError as exc:
-                raise np.linalg.LinAlgError(f"{exc} (block {name[-2:]} on a grid row)") from exc
-            Jx = np.where(rev, np.take_along_axis(x, src, 1), 0.0)
-            Jy = np.where(rev, np.take_along_axis(y, src, 1), 0.0)
-            ZJx, Zy = np.zeros((M, M)), np.zeros((M, M))
-            ZJx[:, 1:] = np.where(rev[:, 1:], Jx[:, :-1], 0.0)
-            Zy[:, 1:] = np.where(rev[:, 1:], y[:, :-1], 0.0)
-            x0 = x[:, :1]
-            if not dense:
-                spec = sfft.rfft(np.stack([Jy, ZJx, x / x0, Zy / x0]), F)
-                spec[:2] = np.conj(spec[:2])
-                self.spectra[b] = spec
-            else:
-                # the formula entry by entry: T^{-1}[i, j] = T^{-1}[i - 1, j - 1] + D[i, j],
-                # D = (x (J y)^T - (Z y) (Z J x)^T) / x_0 (0 beyond each length)
-                D = (x[:, :, None] * Jy[:, None, :] - Zy[:, :, None] * ZJx[:, None, :]) / x0[:, :, None]
-                G = self.matrices[b]
-                G[:, 0] = D[:, 0]
-                for r in range(1, M):
-                    G[:, r, 0] = D[:, r, 0]
-                    G[:, r, 1:] = G[:, r - 1, :-1] + D[:, r, 1:]
-                G *= rev[:, :, None] & rev[:, None, :]  # the sums run on along the diagonals
+        # the three blocks' grid rows, in one Levinson recursion and one formula
+        t = np.stack([(1.0 if name == "ww" else ax) * ops.tables[name][Ky - 1, Kx - M:Kx - 1 + M]
+                      for name in self.BLOCKS])
+        try:
+            x, y = levinson(t, M)  # (3, M, M)
+        except np.linalg.LinAlgError as exc:
+            raise np.linalg.LinAlgError(f"{exc} (block {self.BLOCKS[exc.system][-2:]} on a grid row)") from exc
+        at = np.broadcast_to(src, x.shape)
+        Jx = np.where(rev, np.take_along_axis(x, at, 2), 0.0)
+        Jy = np.where(rev, np.take_along_axis(y, at, 2), 0.0)
+        ZJx, Zy = np.zeros_like(x), np.zeros_like(y)
+        ZJx[:, :, 1:] = np.where(rev[:, 1:], Jx[:, :, :-1], 0.0)
+        Zy[:, :, 1:] = np.where(rev[:, 1:], y[:, :, :-1], 0.0)
+        x0 = x[:, :, :1]
+        if not dense:
+            spec = sfft.rfft(np.stack([Jy, ZJx, x / x0, Zy / x0], 1), F)
+            spec[:, :2] = np.conj(spec[:, :2])
+            self.spectra[:] = spec
+        else:
+            # the formula entry by entry: T^{-1}[i, j] = T^{-1}[i - 1, j - 1] + D[i, j],
+            # D = (x (J y)^T - (Z y) (Z J x)^T) / x_0 (0 beyond each length)
+            D = x[..., None] * Jy[:, :, None, :]
+            D -= Zy[..., None] * ZJx[:, :, None, :]
+            D /= x0[..., None]
+            G = self.matrices
+            G[:, :, 0] = D[:, :, 0]
+            for r in range(1, M):
+                G[:, :, r, 0] = D[:, :, r, 0]
+                np.add(G[:, :, r - 1, :-1], D[:, :, r, 1:], out=G[:, :, r, 1:])
+            G *= rev[:, :, None] & rev[:, None, :]  # the sums run on along the diagonals
         self.units = None if dense else np.exp(-2j * np.pi / F * np.outer(i, np.arange(F // 2 + 1)))
         self._cast: dict = {}
 

@@ -420,9 +420,18 @@ def test_levinson_gives_the_first_and_last_columns_for_every_length(kernels):
             assert np.abs(first[n - 1, :n] - ref[:, 0]).max() < 1e-12 * scale
             assert np.abs(last[n - 1, :n] - ref[:, -1]).max() < 1e-12 * scale
             assert not first[n - 1, n:].any() and not last[n - 1, n:].any()
+    # all four in one recursion: the same columns, to rounding
+    both = levinson(np.stack(rows), M)
+    assert both[0].shape == both[1].shape == (len(rows), M, M)
+    for k, t in enumerate(rows):
+        for got, want in zip(both, levinson(t, M)):
+            assert np.abs(got[k] - want).max() <= 1e-14 * np.abs(want).max()
     t = np.ones(2 * M - 1)  # every leading block of size 2 or more is singular
     with pytest.raises(np.linalg.LinAlgError, match=r"^Levinson's recursion: the leading 2 x 2 block is singular$"):
         levinson(t, M)
+    with pytest.raises(np.linalg.LinAlgError) as info:  # in a batch: which system
+        levinson(np.stack([rows[0], t, t]), M)
+    assert info.value.system == 1
     with pytest.raises(np.linalg.LinAlgError, match=r"^Levinson's recursion: zero diagonal$"):
         levinson(np.r_[np.ones(M - 1), 0.0, np.ones(M - 1)], M)
 
