@@ -10,7 +10,11 @@ Modules, one concept each:
   run length (Levinson, Gohberg-Semencul), by FFT or as matrices;
 * :mod:`~bem.frictional.preconditioner`: exact solves on runs of contact nodes along ``x``
   (those inverses, the slip rows by Woodbury, the row filter);
-* :mod:`~bem.frictional.active_set`: the iteration on the sets;
+* :mod:`~bem.frictional.violations`: what a solution violates, and the next sets, slip
+  directions and slopes;
+* :mod:`~bem.frictional.active_set`: the iteration on the sets (its linear solves, their
+  tolerances);
+* :mod:`~bem.frictional.local`: a few changed stick/slip nodes' rows solved locally;
 * :mod:`~bem.frictional.loading`: the loading modes' equilibrium rows;
 * :mod:`~bem.frictional.starts`: frictionless and coarse-grid starts, continuation in ``mu``;
 * :mod:`~bem.frictional.solve`: the entry points :func:`solve_friction` (a

@@ -6,7 +6,7 @@ contact, penetration joins it; a stick node whose force exceeds the cone
 ``|S| <= mu N`` slips along ``S/|S|``; a slip node whose velocity turns against its
 force ``w . e <= 0`` sticks; the slip directions take ``S/|S|`` and the slopes
 ``k = |w| / (mu N)`` (Newton's at the solution; floored while the slip law is far from
-settled, see :data:`SLOPE_FLOOR`). It stops when the sets
+settled, see :data:`~bem.frictional.violations.SLOPE_FLOOR`). It stops when the sets
 repeat and no direction moves by more than ``direction_tol``: that state satisfies every
 discrete condition exactly (to the linear solve). A recurring set state (a cycle)
 switches to one-node updates; a cycle there is accepted within ``set_tol``, then
@@ -31,17 +31,10 @@ from ..linear import LinearSolver
 from .local import solve_rows
 from .preconditioner import LinePreconditioner
 from .system import RollingSetup, SetState, SetSystem
+from .violations import SLOPE_FLOOR, measure, next_directions, next_sets
 
 __all__ = ["ActiveSetResult", "LinearSolves", "run_active_set", "tight_solve"]
 
-#: floor of the slip-law slope ``k``, in units of ``V / (mu N)``, while the slip misfit is
-#: 1 or more; it fades in proportion to the misfit below 1. Measured (``benchmarks/
-#: bem_friction_rolling.py``): with Newton's slope ``(e . w) / |S|`` and a fixed floor
-#: 1e-3 (the former rule) 14 active-set iterations on the issue-11 case at 61 x 61 and 12
-#: on section 11 at 129 x 129 (the misfit falls by a factor 3 an iteration); Newton's slope
-#: with the fading floor 6 and 11-13, and at 257 x 257 the misfit oscillated between 1
-#: and 14 for ten iterations; ``|w| / (mu N)`` with the fading floor 6 and 7.
-SLOPE_FLOOR = 1e-3
 #: GMRES reduction of the inexact solves, and the slip misfit below which solves are tight.
 #: With the row filter (:data:`bem.frictional.preconditioner.FILTER_POWER`) a reduction of
 #: 1e-4 left the slip directions of the inexact solves too rough to settle: section 11 at
@@ -267,7 +260,7 @@ def run_active_set(setup: RollingSetup, friction: Friction, start: SetState, sol
         reduction = (START_REDUCTION if first else None if tight else FEW_REDUCTION if changed <= FEW_CHANGES
                      else LOOSE_REDUCTION)
         N, Sx, Sy, d, om = solves(system, guess, reduction, of_b=first)
-        v = _measure(setup, contact, stick, N, Sx, Sy, d, om)
+        v = measure(setup, contact, stick, N, Sx, Sy, d, om)
         misfit, wx, wy = v.misfit, v.wx, v.wy
         n_contact, n_stick = int(contact.sum()), int((stick & contact).sum())
         history.append((n_contact, n_stick, misfit, om))
@@ -296,8 +289,8 @@ def run_active_set(setup: RollingSetup, friction: Friction, start: SetState, sol
                             or settle is not None and misfit <= settle):
             break
         prev_stick = stick
-        new_c, new_s = _next_sets(setup, v, contact, stick, N, join_slip, careful and changes)
-        e_full, k_full = _next_directions(setup, v, contact, new_c & ~new_s, N, Sx, Sy)
+        new_c, new_s = next_sets(setup, v, contact, stick, N, join_slip, careful and changes)
+        e_full, k_full = next_directions(setup, v, contact, new_c & ~new_s, N, Sx, Sy)
         key = np.packbits(np.concatenate([new_c, new_s])).tobytes()
         # cycles count once the slip law has settled, or when the contact set itself cycles
         if changes and (misfit <= friction.set_tol or v.drop.any() or v.add.any()):
@@ -352,121 +345,6 @@ def run_active_set(setup: RollingSetup, friction: Friction, start: SetState, sol
     state = SetState(contact=contact, stick=stick, direction=e_full, slope=k_full)
     return ActiveSetResult(N=N, Sx=Sx, Sy=Sy, indentation=d, omega=om, state=state, history=history, gap=v.gap,
                            scale=v.scale, fields=v.fields)
-
-
-@dataclass(frozen=True)
-class Violations:
-    """What the solution of one set state violates (flat full-grid arrays).
-
-    Attributes
-    ----------
-    gap : ndarray
-        ``h`` (m), ``inf`` where the indenter cannot touch.
-    wx, wy, wmag : ndarray
-        Slip velocity (m/s) and its magnitude.
-    smag, wdot : ndarray
-        ``|S|`` (N) and ``w . S`` (W).
-    drop, add : ndarray of bool
-        Contact nodes in tension; other nodes that penetrate.
-    to_slip, to_stick : ndarray of bool
-        Stick nodes beyond the cone; slip nodes whose slip turned against their force.
-    slip : ndarray of bool
-        Slip nodes that stay in slip.
-    misfit : float
-        Largest slip-law misfit on them (-): ``||S| / (mu N) - 1|`` or ``|sin(S, w)|``.
-    scale : float
-        ``|d|`` (m), the scale of the gap.
-    fields : tuple of ndarray
-        The deflection (m) and upwind strains ``du/dx, dv/dx`` (-) of the forces.
-    """
-
-    gap: np.ndarray
-    wx: np.ndarray
-    wy: np.ndarray
-    wmag: np.ndarray
-    smag: np.ndarray
-    wdot: np.ndarray
-    drop: np.ndarray
-    add: np.ndarray
-    to_slip: np.ndarray
-    to_stick: np.ndarray
-    slip: np.ndarray
-    misfit: float
-    scale: float
-    fields: tuple
-
-    @property
-    def changes(self) -> bool:
-        """Whether the sets must change."""
-        return bool(self.drop.any() or self.add.any() or self.to_slip.any() or self.to_stick.any())
-
-
-def _measure(setup: RollingSetup, contact, stick, N, Sx, Sy, d, om) -> Violations:
-    """The violations of the solution ``N, S_x, S_y`` (N), ``d`` (m), ``Omega`` (rad/s)."""
-    ops, V, mu = setup.ops, setup.speed, setup.mu
-    shape = ops.grid.shape
-    fields = tuple(f.ravel() for f in ops.fields(N.reshape(shape), Sx.reshape(shape), Sy.reshape(shape)))
-    delta, sx, sy = fields
-    h = np.where(setup.reach, setup.profile - d + delta, np.inf)
-    wx, wy = V * (1 + sx) - om * setup.ell, V * sy
-    scale = max(abs(d), 1e-300)
-    drop = contact & (N <= 0)
-    add = ~contact & (h < -1e-12 * scale)
-    smag = np.hypot(Sx, Sy)
-    wmag = np.hypot(wx, wy)
-    slip = contact & ~stick & ~drop
-    to_slip = contact & stick & ~drop & (smag > mu * N * (1 + 1e-10))
-    wdot = wx * Sx + wy * Sy
-    to_stick = slip & (wdot <= 0)
-    slip &= ~to_stick
-    with np.errstate(invalid="ignore", divide="ignore"):
-        mis_mag = np.abs(smag - mu * N)[slip] / (mu * N[slip])
-        mis_dir = np.abs(Sx * wy - Sy * wx)[slip] / (smag * wmag)[slip]
-    misfit = float(max(mis_mag.max(initial=0.0), mis_dir.max(initial=0.0)))
-    return Violations(gap=h, wx=wx, wy=wy, wmag=wmag, smag=smag, wdot=wdot, drop=drop, add=add, to_slip=to_slip,
-                      to_stick=to_stick, slip=slip, misfit=misfit, scale=scale, fields=fields)
-
-
-def _next_sets(setup: RollingSetup, v: Violations, contact, stick, N, join_slip, one_node: bool):
-    """The next contact and stick sets: all violations at once, or (``one_node``) only the
-    worst one (tension first, then penetration, cone excess, reversed slip)."""
-    mu = setup.mu
-    if not one_node:
-        new_c = (contact & ~v.drop) | v.add
-        return new_c, ((stick & ~v.to_slip) | v.to_stick | (v.add & ~join_slip)) & new_c
-    new_c, new_s = contact.copy(), stick.copy()
-    if v.drop.any():
-        new_c[np.argmin(np.where(v.drop, N, np.inf))] = False
-    elif v.add.any():
-        j = np.argmin(np.where(v.add, v.gap, np.inf))
-        new_c[j] = True
-        new_s[j] = not join_slip[j]
-    elif v.to_slip.any():
-        new_s[np.argmax(np.where(v.to_slip, v.smag - mu * N, -np.inf))] = False
-    else:
-        new_s[np.argmin(np.where(v.to_stick, v.wdot, np.inf))] = True
-    return new_c, new_s
-
-
-def _next_directions(setup: RollingSetup, v: Violations, contact, new_slip, N, Sx, Sy):
-    """Slip directions ``e = S / |S|`` and slopes ``k`` (m/(s N)) of the next slip set."""
-    V, mu = setup.speed, setup.mu
-    with np.errstate(invalid="ignore", divide="ignore"):
-        e_new = np.stack([Sx, Sy], 1) / v.smag[:, None]
-        # the slope k = |w| / (mu N): Newton's (e . w) / |S| at the solution (where
-        # e . w = |w| and |S| = mu N), and away from it a bound on the force's turn,
-        # |e_perp . S| = mu N |sin(e, w)|; floored at 1e-3 min(1, misfit) V / (mu N), so
-        # that a barely slipping node keeps its force near e while the slip law is far
-        # from settled (see SLOPE_FLOOR)
-        k_new = np.maximum(np.where(v.slip, v.wmag, 0.0), SLOPE_FLOOR * min(1.0, v.misfit) * V) / (mu * N)
-        # a node joining the contact in slip slips along w, k = |w| / (mu N), N the
-        # smallest contact force
-        joining = new_slip & v.add
-        e_new[joining] = np.stack([v.wx, v.wy], 1)[joining] / v.wmag[joining, None]
-        n_ref = float(N[contact & (N > 0)].min(initial=np.inf))
-        k_new[joining] = v.wmag[joining] / (mu * n_ref)
-    direction = np.where(new_slip[:, None] & ((v.smag[:, None] > 0) | joining[:, None]), e_new, 0.0)
-    return direction, np.where(new_slip, np.nan_to_num(k_new), 0.0)
 
 
 def _unreachable_or_not_converged(friction: Friction, history) -> None:

@@ -57,7 +57,7 @@ def solve_rows(setup: RollingSetup, state: SetState, changed: np.ndarray, N, Sx,
     fields : tuple of ndarray
         Its deflection (m) and upwind strains ``du/dx, dv/dx`` (-), full grid.
     floor : float
-        The smallest slip speed (m/s) the slopes take (:data:`~bem.frictional.active_set.
+        The smallest slip speed (m/s) the slopes take (:data:`~bem.frictional.violations.
         SLOPE_FLOOR` times ``V``, faded by the slip misfit, as the active set does).
 
     Returns

@@ -1119,7 +1119,7 @@ def test_an_accepted_cycle_ends_on_the_replayed_step(kernels):
 
 
 def _violations(n, **over):
-    from bem.frictional.active_set import Violations
+    from bem.frictional.violations import Violations
 
     zero, no = np.zeros(n), np.zeros(n, bool)
     fields = dict(gap=np.ones(n), wx=zero, wy=zero, wmag=zero, smag=zero, wdot=zero, drop=no, add=no,
@@ -1129,8 +1129,8 @@ def _violations(n, **over):
 
 
 def test_one_node_updates_take_the_worst_violation_in_order():
-    """_next_sets (module docstring: after a cycle "one-node updates"; its docstring: tension
-    first, then penetration, cone excess, reversed slip, the worst one): on 6 nodes with two
+    """next_sets (the active set's module docstring: after a cycle "one-node updates"; its
+    docstring: tension first, then penetration, cone excess, reversed slip, the worst one): on 6 nodes with two
     violations of each kind, the most tensile node leaves; without tension the deepest
     penetrating node joins (in stick unless it joins in slip); then the stick node furthest
     beyond the cone slips; then the slip node whose w . S is most negative sticks. All at
@@ -1138,7 +1138,7 @@ def test_one_node_updates_take_the_worst_violation_in_order():
     reversed slip sticks."""
     from types import SimpleNamespace
 
-    from bem.frictional.active_set import _next_sets
+    from bem.frictional.violations import next_sets
 
     setup = SimpleNamespace(mu=0.5)
     c = np.array([1, 1, 1, 1, 0, 0], bool)
@@ -1155,7 +1155,7 @@ def test_one_node_updates_take_the_worst_violation_in_order():
     join = np.array([0, 0, 0, 0, 0, 1], bool)
 
     def step(v, one, join_slip=no, contact=c, stick=k, forces=N):
-        nc, ns = _next_sets(setup, v, contact.copy(), stick.copy(), forces, join_slip, one)
+        nc, ns = next_sets(setup, v, contact.copy(), stick.copy(), forces, join_slip, one)
         return nc.tolist(), (ns & nc).tolist()
 
     v = _violations(6, gap=gap, smag=smag, wdot=wdot, drop=drop, add=add, to_slip=to_slip, to_stick=to_stick)

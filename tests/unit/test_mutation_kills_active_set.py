@@ -7,10 +7,11 @@ slip opposes its force, with a slip misfit above ``set_tol`` next to a tiny cont
 violation, with several violations at once, with a node that returns after leaving. The one
 cycling input found cheaply on a real layer (towed, ``mu = 1e-3``, 67 contact nodes; see
 ``test_mutation_friction_solve.py``) has a single cone excess per step and none of these.
-So here :func:`run_active_set` runs unchanged with its own ``_measure``, ``_next_sets`` and
-``_next_directions``, but the linear solve of each set state is replaced by a table: the
-forces of the contact nodes and the fields (gap ``h``, slip velocity ``w``) that the layer
-would give for that state, chosen so that the state cycles. Each test asserts what the
+So here :func:`run_active_set` runs unchanged with its own ``measure``, ``next_sets`` and
+``next_directions`` (:mod:`bem.frictional.violations`), but the linear solve of each set
+state is replaced by a table: the forces of the contact nodes and the fields (gap ``h``,
+slip velocity ``w``) that the layer would give for that state, chosen so that the state
+cycles. Each test asserts what the
 module docstring and the comments of the rules say must happen (the sequence of set states,
 the iteration the run stops at, the figures of the error) against values worked out here by
 hand from the scripted numbers, not read from the code. Each run takes milliseconds.
@@ -69,7 +70,7 @@ class ScriptedLayer:
     """Stands in for the linear solves (``solves``) and the set system (``SetSystem``):
     ``respond(state) -> (N, S, h, w)`` gives the forces and the fields the layer would
     return for a set state; :meth:`fields` hands ``h`` and ``w`` to the module's own
-    ``_measure`` through ``delta = h - s + d`` (profile ``s = 0``) and the strains
+    ``measure`` through ``delta = h - s + d`` (profile ``s = 0``) and the strains
     ``(w_x + Omega l) / V - 1``, ``w_y / V``. Records every state solved."""
 
     iterations = 0  # GMRES iterations (none: read by the progress line)
