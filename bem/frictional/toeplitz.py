@@ -47,21 +47,20 @@ def levinson(t: np.ndarray, M: int) -> tuple[np.ndarray, np.ndarray]:
     B, c = T.shape[0], M - 1
     first, last = np.zeros((B, M, M)), np.zeros((B, M, M))
 
-    def fail(message, bad):
-        exc = np.linalg.LinAlgError(message)
-        exc.system = int(np.flatnonzero(bad)[0])
-        return exc
+    def check(bad, message):
+        if bad.any():
+            exc = np.linalg.LinAlgError(message)
+            exc.system = int(np.flatnonzero(bad)[0])
+            raise exc
 
-    if (T[:, c] == 0).any():
-        raise fail("Levinson's recursion: zero diagonal", T[:, c] == 0)
+    check(T[:, c] == 0, "Levinson's recursion: zero diagonal")
     first[:, 0, 0] = last[:, 0, 0] = 1.0 / T[:, c]
     for n in range(1, M):
         x, y = first[:, n - 1, :n], last[:, n - 1, :n]
         ex = np.einsum("bj,bj->b", T[:, c + n:c:-1], x)  # row n of T_{n+1} on [x; 0]
         ey = np.einsum("bj,bj->b", T[:, c - 1::-1][:, :n], y)  # row 0 of T_{n+1} on [0; y]
         den = 1.0 - ex * ey
-        if (np.abs(den) < 1e-12).any():
-            raise fail(f"Levinson's recursion: the leading {n + 1} x {n + 1} block is singular", np.abs(den) < 1e-12)
+        check(np.abs(den) < 1e-12, f"Levinson's recursion: the leading {n + 1} x {n + 1} block is singular")
         first[:, n, :n] = x
         first[:, n, 1:n + 1] -= ex[:, None] * y
         last[:, n, 1:n + 1] = y
@@ -112,7 +111,7 @@ class RowInverses:
         rev = src >= 0
         src = np.where(rev, src, 0)
         dense = M <= DENSE_UPTO if dense is None else dense
-        self.spectra = None if dense else np.empty((3, 4, M, F // 2 + 1), complex)
+        self.spectra = None
         self.matrices = np.empty((3, M, M, M)) if dense else None
         # the three blocks' grid rows, in one Levinson recursion and one formula
         t = np.stack([(1.0 if name == "ww" else ax) * ops.tables[name][Ky - 1, Kx - M:Kx - 1 + M]
@@ -131,7 +130,7 @@ class RowInverses:
         if not dense:
             spec = sfft.rfft(np.stack([Jy, ZJx, x / x0, Zy / x0], 1), F)
             spec[:, :2] = np.conj(spec[:, :2])
-            self.spectra[:] = spec
+            self.spectra = spec  # (3, 4, M, F // 2 + 1)
         else:
             # the formula entry by entry: T^{-1}[i, j] = T^{-1}[i - 1, j - 1] + D[i, j],
             # D = (x (J y)^T - (Z y) (Z J x)^T) / x_0 (0 beyond each length)
