@@ -208,7 +208,10 @@ class LinePreconditioner:
         row inverses for its longest run, the row filter of its box), e.g. on an idle
         thread."""
         lens = _runs(system)[1]
-        self._row_inverses(system.ops, int(lens.max()))
+        inv = self._row_inverses(system.ops, int(lens.max()))
+        if inv.dense:  # the inverses of the run lengths present
+            inv.operand(0, lens, self.dtype)
+            inv.operand((1, 2), lens, self.dtype)
         self._row_filter(system)
 
     def _row_filter(self, system: SetSystem):
@@ -229,7 +232,7 @@ class LinePreconditioner:
         place[at] = True
         spread = (np.arange(3)[:, None] * (R * M) + at).ravel()  # N, S_x, S_y into (3, R, M)
         spec_n = inv.operand(0, lens, self.dtype)
-        spec_t = np.concatenate([inv.operand(b, lens, self.dtype) for b in (1, 2)], 0 if inv.matrices is not None else 1)
+        spec_t = inv.operand((1, 2), lens, self.dtype)
         groups = self._woodbury(system, inv, starts, lens, run)
         slip = at[system.B]
         coup = np.zeros(R * M, self.dtype)

@@ -8,9 +8,10 @@ of ``m`` contiguous contact nodes sees Toeplitz blocks: ``C_ww`` in its gap rows
 upwind-differenced ``a_x C_uu``, ``a_x C_vv`` in its stick rows. The inverse of a Toeplitz
 matrix is fixed by its first and last columns (two products of triangular Toeplitz
 matrices, ``O(m log m)`` by FFT), and Levinson's recursion gives those columns for every
-length up to the longest run at once (``O(M^2)``, once a grid); runs of up to
-:data:`DENSE_UPTO` nodes take the inverses themselves, from the same formula. Their use,
-the slip rows by Woodbury's identity: :mod:`bem.frictional.preconditioner`.
+length up to the longest run at once (``O(M^2)``, once a grid); up to :data:`DENSE_UPTO`
+nodes the runs take the inverses themselves, built by bordering for the lengths present and
+applied one product per length (:class:`GroupedRuns`). Their use, the slip rows by
+Woodbury's identity: :mod:`bem.frictional.preconditioner`.
 """
 
 from __future__ import annotations
@@ -21,14 +22,22 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 import scipy.fft as sfft
 
-__all__ = ["RowInverses", "levinson", "second_thread", "DENSE_UPTO"]
+__all__ = ["RowInverses", "GroupedRuns", "levinson", "second_thread", "DENSE_UPTO", "BATCHED_UPTO"]
 
-#: when the longest run (rounded up to 16 nodes) has at most this many nodes, every run is
-#: solved by its inverse itself (:attr:`RowInverses.matrices`, ``24 M^3`` bytes), else by
-#: transforms. Measured (one application against the former dense line inverses, alternated
-#: 40 times, new / old): issue case 61 x 61 1.15 by inverses, 1.71 by transforms; runs of up
-#: to 112 nodes (121 x 121, 129 x 129) 1.12-1.25 by inverses, 0.98-1.21 by transforms
-DENSE_UPTO = 96
+#: when the longest run (rounded up to 16 nodes) has at most this many nodes, the runs are
+#: solved by their inverses themselves (:meth:`RowInverses.inverse`, built for the lengths
+#: present, applied by :class:`GroupedRuns`), else by transforms. Measured (one
+#: application, the three blocks in single precision, against transforms): issue-11 case
+#: at 121 x 121 (``M = 112``, 101 runs of 31 lengths) 0.51 against 1.73 ms, section 11 at
+#: 129 x 129 (``M = 112``, 111 runs of 38 lengths) 0.48-0.54 against 1.2-1.4 ms; at 257 x 257
+#: (``M = 208``, 221 runs of 76 lengths) 4.4 against 4.7 ms, the inverses (20 MB) read from
+#: memory at each application, and twice the build (78 against 38 ms): transforms there
+DENSE_UPTO = 128
+#: :class:`GroupedRuns` pads every run's inverse to ``M x M`` and solves all runs in one
+#: batched product up to this ``M``, and groups the runs by length above it. Measured (issue-11
+#: case at 61 x 61, ``M = 61``, 51 runs of 16 lengths, the three blocks): 0.07-0.08 ms batched
+#: against 0.13-0.17 ms grouped
+BATCHED_UPTO = 64
 
 
 def levinson(t: np.ndarray, M: int) -> tuple[np.ndarray, np.ndarray]:
@@ -73,30 +82,34 @@ def levinson(t: np.ndarray, M: int) -> tuple[np.ndarray, np.ndarray]:
 class RowInverses:
     """The inverses of the Toeplitz blocks of a run of ``n`` contact nodes on a grid row,
     ``n = 1 ... M``: ``C_ww`` (gap rows) and ``a_x C_uu``, ``a_x C_vv`` upwind-differenced
-    (stick rows), as the spectra of Gohberg-Semencul's formula
+    (stick rows), from the first and last columns ``x, y`` of ``T^{-1}`` (:func:`levinson`)
+    by Gohberg-Semencul's formula
 
         ``T^{-1} = (L(x) U(J y) - L(Z y) U(Z J x)) / x_0``
 
-    (``x, y`` the first and last columns of ``T^{-1}`` from :func:`levinson`, ``L(a)`` and
-    ``U(a)`` the lower and upper triangular Toeplitz matrices with first column or row
-    ``a``, ``J`` the reversal, ``Z`` the shift down by one) on transforms of length ``F >= 2 M
-    - 1``: ``U`` is a correlation, ``L`` a convolution, each a product of spectra.
+    (``L(a)`` and ``U(a)`` the lower and upper triangular Toeplitz matrices with first
+    column or row ``a``, ``J`` the reversal, ``Z`` the shift down by one). Two ways to apply
+    them:
+
+    * ``dense`` (default: ``M <=`` :data:`DENSE_UPTO`): the inverses themselves, built for
+      the run lengths asked for (:meth:`inverse`; the formula entry by entry, ``T^{-1}[i,
+      j] = T^{-1}[i - 1, j - 1] + D[i, j]``, ``O(n^2)`` a length) and kept; the runs of one
+      length are solved by one matrix product (:class:`GroupedRuns`);
+    * else by transforms of length ``F >= 2 M - 1``: ``U`` is a correlation, ``L`` a
+      convolution, each a product of spectra.
 
     Attributes
     ----------
     M, F : int
         The longest run and the transform length.
+    dense : bool
+        Whether the inverses are applied themselves.
     spectra : ndarray, shape ``(3, 4, M, F // 2 + 1)``, or None
         Per block (``ww``, ``uu``, ``vv``) and length ``n`` (index ``n - 1``) the spectra of
         ``J y`` and ``Z J x`` (conjugated: correlations) and of ``x / x_0``, ``Z y / x_0``;
-        ``None`` with ``matrices`` (not read then).
+        ``None`` when ``dense``.
     units : ndarray, shape ``(M, F // 2 + 1)``, or None
-        The spectra of the unit vectors ``e_0 ... e_{M - 1}``; ``None`` with ``matrices``.
-    matrices : ndarray, shape ``(3, M, M, M)``, or None
-        With ``dense`` (default: ``M <=`` :data:`DENSE_UPTO`) the inverses themselves, per
-        block and length (``T_n^{-1}`` in the leading ``n x n`` of index ``n - 1``, 0
-        around it), from the same formula: runs this short are applied faster by batched
-        products than by transforms.
+        The spectra of the unit vectors ``e_0 ... e_{M - 1}``; ``None`` when ``dense``.
     """
 
     BLOCKS = ("ww", "duu", "dvv")
@@ -106,13 +119,7 @@ class RowInverses:
         self.M = M = min(M, Kx)
         self.F = F = sfft.next_fast_len(2 * M - 1, real=True)
         ax = ops.grid.spacing_x
-        i = np.arange(M)
-        src = i[:, None] - i[None, :]  # row n - 1, entry i: entry n - 1 - i of the columns
-        rev = src >= 0
-        src = np.where(rev, src, 0)
-        dense = M <= DENSE_UPTO if dense is None else dense
-        self.spectra = None
-        self.matrices = np.empty((3, M, M, M)) if dense else None
+        self.dense = M <= DENSE_UPTO if dense is None else dense
         # the three blocks' grid rows, in one Levinson recursion and one formula
         t = np.stack([(1.0 if name == "ww" else ax) * ops.tables[name][Ky - 1, Kx - M:Kx - 1 + M]
                       for name in self.BLOCKS])
@@ -120,67 +127,113 @@ class RowInverses:
             x, y = levinson(t, M)  # (3, M, M)
         except np.linalg.LinAlgError as exc:
             raise np.linalg.LinAlgError(f"{exc} (block {self.BLOCKS[exc.system][-2:]} on a grid row)") from exc
-        at = np.broadcast_to(src, x.shape)
-        Jx = np.where(rev, np.take_along_axis(x, at, 2), 0.0)
-        Jy = np.where(rev, np.take_along_axis(y, at, 2), 0.0)
-        ZJx, Zy = np.zeros_like(x), np.zeros_like(y)
-        ZJx[:, :, 1:] = np.where(rev[:, 1:], Jx[:, :, :-1], 0.0)
-        Zy[:, :, 1:] = np.where(rev[:, 1:], y[:, :, :-1], 0.0)
-        x0 = x[:, :, :1]
-        if not dense:
+        self._levinson = (x, y)
+        self._inverses: dict = {}  # n -> (3, n, n) T_n^{-1}, double
+        self._cast: dict = {}
+        self._grouped: dict = {}
+        self.spectra = self.units = None
+        if not self.dense:
+            i = np.arange(M)
+            src = i[:, None] - i[None, :]  # row n - 1, entry i: entry n - 1 - i of the columns
+            rev = src >= 0
+            at = np.broadcast_to(np.where(rev, src, 0), x.shape)
+            Jx = np.where(rev, np.take_along_axis(x, at, 2), 0.0)
+            Jy = np.where(rev, np.take_along_axis(y, at, 2), 0.0)
+            ZJx, Zy = np.zeros_like(x), np.zeros_like(y)
+            ZJx[:, :, 1:] = np.where(rev[:, 1:], Jx[:, :, :-1], 0.0)
+            Zy[:, :, 1:] = np.where(rev[:, 1:], y[:, :, :-1], 0.0)
+            x0 = x[:, :, :1]
             spec = sfft.rfft(np.stack([Jy, ZJx, x / x0, Zy / x0], 1), F)
             spec[:, :2] = np.conj(spec[:, :2])
             self.spectra = spec  # (3, 4, M, F // 2 + 1)
-        else:
-            # the formula entry by entry: T^{-1}[i, j] = T^{-1}[i - 1, j - 1] + D[i, j],
-            # D = (x (J y)^T - (Z y) (Z J x)^T) / x_0 (0 beyond each length)
-            D = x[..., None] * Jy[:, :, None, :]
-            D -= Zy[..., None] * ZJx[:, :, None, :]
-            D /= x0[..., None]
-            G = self.matrices
-            G[:, :, 0] = D[:, :, 0]
-            for r in range(1, M):
-                G[:, :, r, 0] = D[:, :, r, 0]
-                np.add(G[:, :, r - 1, :-1], D[:, :, r, 1:], out=G[:, :, r, 1:])
-            G *= rev[:, :, None] & rev[:, None, :]  # the sums run on along the diagonals
-        self.units = None if dense else np.exp(-2j * np.pi / F * np.outer(i, np.arange(F // 2 + 1)))
-        self._cast: dict = {}
+            self.units = np.exp(-2j * np.pi / F * np.outer(i, np.arange(F // 2 + 1)))
 
-    def operand(self, b: int, lens: np.ndarray, dtype) -> np.ndarray:
-        """What :meth:`solve` needs for block ``b`` (0: ``ww``, 1: ``uu``, 2: ``vv``) on
-        runs of ``lens`` nodes, in real ``dtype``: their :attr:`matrices` ``(R, M, M)``, or
-        their :attr:`spectra` ``(4, R, F // 2 + 1)`` in the matching complex type."""
+    def inverse(self, n: int) -> np.ndarray:
+        """``T_n^{-1}`` of the three blocks, ``(3, n, n)``, double (built and kept)."""
+        n = int(n)
+        if not 1 <= n <= self.M:
+            raise ValueError(f"a run of {n} nodes: the inverses are for 1 to {self.M}")
+        if n not in self._inverses:
+            self._build(np.array([n]))
+        return self._inverses[n]
+
+    def _build(self, lengths: np.ndarray) -> None:
+        """The inverses of the run ``lengths`` not built yet, by bordering: ``T_{n+1}`` is
+        ``T_n`` with a row and a column added, and its inverse is ``T_n^{-1}`` (padded
+        with 0) plus ``y (J x)^T / x_0``, ``x, y`` the first and last columns of
+        ``T_{n+1}^{-1}`` (:func:`levinson`; its last row is ``J x`` and its last diagonal
+        entry ``x_0``, a Toeplitz inverse being persymmetric): one rank-one update a
+        length, up to the longest asked for, ``O(m^3)`` in all (a few ms at ``m = 112``,
+        against 15-25 ms for the lengths of the issue-11 case at 121 x 121 one by one by
+        Gohberg-Semencul's formula)."""
+        todo = {int(n) for n in lengths} - set(self._inverses)
+        if not todo:
+            return
+        m = max(todo)
+        x, y = self._levinson
+        G = np.zeros((3, m, m))
+        for n in range(1, m + 1):
+            G[:, :n, :n] += y[:, n - 1, :n, None] * (x[:, n - 1, n - 1::-1] / x[:, n - 1, :1])[:, None, :]
+            if n in todo:
+                self._inverses[n] = G[:, :n, :n].copy()
+
+    def _transposed(self, n: int, blocks: tuple, dtype) -> np.ndarray:
+        """``T_n^{-T}`` of ``blocks``, ``(B, n, n)`` contiguous in ``dtype`` (kept)."""
+        key = (n, blocks, np.dtype(dtype))
+        if key not in self._cast:
+            self._cast[key] = np.ascontiguousarray(self.inverse(n)[list(blocks)].transpose(0, 2, 1), dtype)
+        return self._cast[key]
+
+    def operand(self, blocks, lens: np.ndarray, dtype):
+        """What :meth:`solve` needs for ``blocks`` (an index or a tuple of them; 0: ``ww``,
+        1: ``uu``, 2: ``vv``) on runs of ``lens`` nodes, in real ``dtype``: a
+        :class:`GroupedRuns` (``dense``), or the :attr:`spectra` ``(4, B R, F // 2 + 1)``
+        in the matching complex type, the blocks one after the other along the runs."""
+        blocks = (int(blocks),) if np.ndim(blocks) == 0 else tuple(int(b) for b in blocks)
+        lens = np.asarray(lens)
+        if self.dense:
+            self._build(np.unique(lens))
+            # kept for the last runs of each blocks and dtype (the contact set's runs repeat
+            # over a solve's active-set iterations)
+            key = (blocks, np.dtype(dtype))
+            last = self._grouped.get(key)
+            if last is None or not np.array_equal(last[0], lens):
+                self._grouped[key] = last = (lens.copy(), GroupedRuns(self, blocks, lens, dtype))
+            return last[1]
         dtype = np.dtype(dtype)
         if dtype not in self._cast:
-            self._cast[dtype] = (self.matrices if self.matrices is not None else self.spectra).astype(
-                dtype if self.matrices is not None else np.result_type(dtype, np.complex64))
-        table = self._cast[dtype][b]
-        return table[lens - 1] if self.matrices is not None else table[:, lens - 1]
+            self._cast[dtype] = self.spectra.astype(np.result_type(dtype, np.complex64))
+        table = self._cast[dtype]
+        return np.concatenate([table[b][:, lens - 1] for b in blocks], 1)
 
-    def solve(self, operand: np.ndarray, v: np.ndarray, threads: bool = False) -> np.ndarray:
-        """``T^{-1} v`` for each row of ``v`` ``(R, M)`` (a run's values in its first ``n``
-        entries, 0 after them), ``operand`` the runs' :meth:`operand`; the first ``n``
-        entries of each result row are the run's. With ``threads`` the rows are split
-        between two threads (the transforms and products release the GIL)."""
-        dense = self.matrices is not None
+    def solve(self, operand, v: np.ndarray, threads: bool = False) -> np.ndarray:
+        """``T^{-1} v`` for each row of ``v`` ``(B R, M)`` (a run's values in its first ``n``
+        entries, 0 after them; the runs of each block of the operand one after the other),
+        ``operand`` the runs' :meth:`operand`; the first ``n`` entries of each result row
+        are the run's. With ``threads`` the work is split between two threads (the
+        transforms and products release the GIL)."""
+        if isinstance(operand, GroupedRuns):
+            return operand.apply(v, threads)
         rows = v.shape[0]
         if not threads or rows < 2:
-            return self._apply(operand, v, dense)
+            return self._transform(operand, v)
         half = rows // 2
-        lo, hi = ((operand[:half], operand[half:]) if dense else (operand[:, :half], operand[:, half:]))
-        job = second_thread().submit(self._apply, hi, v[half:], dense)
-        first = self._apply(lo, v[:half], dense)
+        job = second_thread().submit(self._transform, operand[:, half:], v[half:])
+        first = self._transform(operand[:, :half], v[:half])
         return np.concatenate([first, job.result()])
-
-    def _apply(self, operand, v, dense):
-        return np.matmul(operand, v[:, :, None])[:, :, 0] if dense else self._transform(operand, v)
 
     def columns(self, b: int, lens: np.ndarray, pos: np.ndarray, dtype, threads: bool = False) -> np.ndarray:
         """The columns ``pos`` ``(L, P)`` of the inverses of block ``b`` for runs of ``lens``
-        (``L``) nodes, as rows ``(L, P, M)`` in real ``dtype``."""
-        if self.matrices is not None:
-            mats = self.operand(b, lens, dtype)
-            return np.take_along_axis(mats, pos[:, None, :], 2).swapaxes(1, 2)
+        (``L``) nodes, as rows ``(L, P, M)`` in real ``dtype`` (0 beyond the run, and for a
+        place at or beyond its end)."""
+        if self.dense:
+            out = np.zeros((len(lens), pos.shape[1], self.M), dtype)
+            for i, n in enumerate(lens):
+                inside = pos[i] < n
+                # rows of T^{-T}, from the stacks the solves read (blocks 0, then 1 and 2)
+                GT = self._transposed(int(n), (1, 2), dtype)[b - 1] if b else self._transposed(int(n), (0,), dtype)[0]
+                out[i, inside, :n] = GT[pos[i][inside]]
+            return out
         spec = self.operand(b, lens, dtype)[:, :, None]
         unit = self.units[pos].astype(spec.dtype)
         if not threads or len(lens) < 2:
@@ -199,6 +252,68 @@ class RowInverses:
         W[0] *= spectra[2]
         W[1] *= spectra[3]
         return sfft.irfft(W[0] - W[1], F)[..., :M]
+
+
+class GroupedRuns:
+    """The dense inverses of :class:`RowInverses` for runs of ``lens`` nodes and ``blocks``:
+    for ``M <=`` :data:`BATCHED_UPTO` each run's inverse padded to ``M x M``, one batched
+    product for all runs; above it the runs grouped by length, one matrix product per
+    length present (``(B, k, n) x (B, n, n)`` for its ``k`` runs; a grid row and its mirror
+    have one length, and a contact's rows take few lengths) instead of ``M x M`` per run.
+    Measured, the three blocks in single precision: issue-11 case at 121 x 121 (101 runs of
+    31 lengths, ``M = 112``) 0.51 ms grouped against 1.73 ms by transforms; at 61 x 61 (51
+    runs of 16 lengths, ``M = 61``) 0.07 ms batched against 0.13-0.17 ms grouped."""
+
+    def __init__(self, inv: RowInverses, blocks: tuple, lens: np.ndarray, dtype):
+        self.blocks, self.dtype, self.runs = len(blocks), np.dtype(dtype), lens.size
+        order = np.argsort(lens, kind="stable")
+        ordered = lens[order]
+        cuts = np.flatnonzero(np.r_[True, ordered[1:] != ordered[:-1], True])
+        groups = [(int(a), int(b), int(ordered[a]), inv._transposed(int(ordered[a]), blocks, dtype))
+                  for a, b in zip(cuts[:-1], cuts[1:])]
+        self.stack = None
+        if inv.M <= BATCHED_UPTO:
+            # every run's T^{-T}, padded (rows in the runs' own order)
+            M = inv.M
+            self.stack = np.zeros((len(blocks), lens.size, M, M), dtype)
+            for a, b, n, G in groups:
+                self.stack[:, order[a:b], :n, :n] = G[:, None]
+            self.groups, self.order = [], None
+            self.nbytes = self.stack.nbytes
+        else:
+            self.groups, self.order = groups, order
+            self.nbytes = sum(G.nbytes for *_, G in groups)
+
+    def apply(self, v: np.ndarray, threads: bool = False) -> np.ndarray:
+        """``T^{-1} v`` for the rows of ``v`` ``(B R, M)`` (see :meth:`RowInverses.solve`)."""
+        B, R = self.blocks, self.runs
+        if self.stack is not None:
+            vb = v.reshape(B, R, 1, -1)
+            if not threads or R < 2:
+                return np.matmul(vb, self.stack).reshape(v.shape)
+            half = R // 2
+            job = second_thread().submit(np.matmul, vb[:, half:], self.stack[:, half:])
+            first = np.matmul(vb[:, :half], self.stack[:, :half])
+            return np.concatenate([first, job.result()], 1).reshape(v.shape)
+        vb = v.reshape(B, R, -1)[:, self.order]
+        out = np.zeros_like(vb)
+
+        def part(groups):
+            for a, b, n, G in groups:
+                np.matmul(vb[:, a:b, :n], G, out=out[:, a:b, :n])
+
+        if threads and len(self.groups) > 1:
+            # the longest runs' groups on the second thread, about half the products
+            work = np.cumsum([(b - a) * n * n for a, b, n, _ in self.groups])
+            cut = int(np.searchsorted(work, work[-1] / 2)) + 1
+            job = second_thread().submit(part, self.groups[cut:])
+            part(self.groups[:cut])
+            job.result()
+        else:
+            part(self.groups)
+        res = np.empty_like(out)
+        res[:, self.order] = out
+        return res.reshape(v.shape)
 
 
 def second_thread() -> ThreadPoolExecutor:

@@ -444,34 +444,49 @@ def test_row_inverses_solve_the_runs_toeplitz_systems(kernels, threads, dense, M
     themselves: for runs of 1 to ``M`` nodes, batched with others of different lengths and
     zero beyond their own, ``solve`` equals numpy's solve with the run's Toeplitz block
     (``C_ww``, ``a_x`` times the differenced ``C_uu``, ``C_vv``) to 1e-12 (measured 1e-15),
-    ``columns`` gives the inverse's columns, and the dense inverses are numpy's, 0 outside
-    their length; the transform is at least ``2 M - 1`` long (no wrap), and two threads
-    give the same bits as one; an odd transform length (``M = 13``: 25) as an even one."""
+    ``columns`` gives the inverse's columns, and the dense inverses are numpy's, built
+    for the lengths asked for only; the transform is at least ``2 M - 1`` long (no wrap),
+    and two threads give the same bits as one; an odd transform length (``M = 13``: 25) as
+    an even one; the dense inverses batched (padded to ``M x M``) or grouped by length."""
     from bem.frictional import RollingOperators
-    from bem.frictional.toeplitz import DENSE_UPTO, RowInverses
+    from bem.frictional.toeplitz import DENSE_UPTO, GroupedRuns, RowInverses
 
     ops = RollingOperators(GRID, kernels)
     Ky, Kx = GRID.shape
     inv = RowInverses(ops, M, dense=dense)
-    assert inv.M == M and inv.F == {16: 32, 13: 25}[M]
+    assert inv.M == M and inv.F == {16: 32, 13: 25}[M] and inv.dense == dense
     if dense:  # the transforms' spectra are not built: the inverses are applied themselves
         assert inv.spectra is None and inv.units is None
     else:
         assert inv.spectra.shape == (3, 4, M, inv.F // 2 + 1) and inv.units.shape == (M, inv.F // 2 + 1)
-    assert (inv.matrices is not None) == dense and (not dense or inv.matrices.shape == (3, M, M, M))
     assert RowInverses(ops, 99).M == Kx  # no run is longer than a grid row
-    assert (RowInverses(ops, 16).matrices is not None) == (16 <= DENSE_UPTO)
-    from bem.frictional import preconditioner
+    assert RowInverses(ops, 16).dense == (16 <= DENSE_UPTO)
     with pytest.MonkeyPatch.context() as m:  # dense up to DENSE_UPTO nodes inclusive
         m.setattr(toeplitz, "DENSE_UPTO", M)
-        assert RowInverses(ops, M).matrices is not None and RowInverses(ops, M + 1).matrices is None
+        assert RowInverses(ops, M).dense and not RowInverses(ops, M + 1).dense
+    with pytest.raises(ValueError, match=rf"^a run of {M + 1} nodes: the inverses are for 1 to {M}$"):
+        inv.inverse(M + 1)
     lens = np.array([1, 2, 7, M, 9, M])
     pos = np.array([[0, 0], [1, 0], [6, 2], [M - 1, 3], [4, 8], [0, 9]])
     rng = np.random.default_rng(8)
     v = rng.normal(size=(lens.size, M)) * (np.arange(M) < lens[:, None])
+    if dense:
+        assert sorted(inv._inverses) == []  # none built before asked for
     for b, (name, scale) in enumerate((("ww", 1.0), ("duu", GRID.spacing_x), ("dvv", GRID.spacing_x))):
         t = scale * ops.tables[name][Ky - 1, Kx - M:Kx - 1 + M]
         got = inv.solve(inv.operand(b, lens, np.float64), v, threads=threads)
+        if dense:
+            assert sorted(inv._inverses) == sorted(set(lens))  # the lengths present only
+            with pytest.MonkeyPatch.context() as m:  # grouped by length: the same values
+                m.setattr(toeplitz, "BATCHED_UPTO", M - 1)
+                grouped = GroupedRuns(inv, (b,), lens, np.float64)
+                assert grouped.stack is None and len(grouped.groups) == len(set(lens))
+                other = inv.solve(grouped, v, threads=threads)
+                np.testing.assert_array_equal(other, inv.solve(grouped, v))
+            assert np.abs(other - got).max() < 1e-13 * np.abs(got).max()
+            # both blocks of the tangential rows in one operand: each block's rows as alone
+            two = inv.solve(inv.operand((b, 2), lens, np.float64), np.concatenate([v, v]), threads=threads)
+            assert np.abs(two[:lens.size] - got).max() < 1e-13 * np.abs(got).max()
         cols = inv.columns(b, lens, pos, np.float64, threads=threads)
         np.testing.assert_array_equal(got, inv.solve(inv.operand(b, lens, np.float64), v))
         assert cols.shape == (lens.size, 2, M)
@@ -489,8 +504,9 @@ def test_row_inverses_solve_the_runs_toeplitz_systems(kernels, threads, dense, M
                     col = Ti[:, pos[row, k]]
                     assert np.abs(cols[row, k, :n] - col).max() < 1e-12 * np.abs(col).max()
             if dense:
-                assert np.abs(inv.matrices[b, n - 1, :n, :n] - Ti).max() < 1e-12 * np.abs(Ti).max()
-                assert not inv.matrices[b, n - 1, n:].any() and not inv.matrices[b, n - 1, :, n:].any()
+                assert inv.inverse(n).shape == (3, n, n)
+                assert np.abs(inv.inverse(n)[b] - Ti).max() < 1e-12 * np.abs(Ti).max()
+                assert not got[row, n:].any() and not cols[row, :, n:].any()  # 0 beyond the run
 
 
 @pytest.mark.parametrize("dtype, tol", [(np.float64, 1e-10), (np.float32, 2e-5)])
@@ -517,7 +533,7 @@ def test_line_preconditioner_is_the_inverse_of_its_run_blocks(kernels, monkeypat
     x = np.random.default_rng(1).normal(size=system.n)
     pre = LinePreconditioner(dtype=dtype, filter_power=0)
     pre.attach(system)
-    assert (pre.inverses.matrices is not None) == (dense_upto > 0)
+    assert pre.inverses.dense == (dense_upto > 0)
     got = system.precondition(B @ x)
     assert got.shape == (system.n,) and got.dtype == np.float64
     assert np.abs(got - x).max() < tol * np.abs(x).max()
