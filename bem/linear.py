@@ -219,9 +219,10 @@ class LinearSolver:
         vectors kept in single precision (:func:`fgmres`'s ``basis``), the residual at each
         cycle's end on ``matvec``; ``inf``: never.
     single_start : float
-        A call whose ``rtol`` is below ``single_from`` first reduces its residual by this
-        (-) as a call at ``single_from`` would, then goes on in double precision from the
-        residual left (recomputed by ``matvec``); 0: in double precision throughout.
+        A call whose ``rtol`` is below ``single_from`` is iterative refinement: phases as a
+        call at ``single_from`` runs them (single-precision products and basis), each
+        reducing the residual left, recomputed by ``matvec``, by at most this (-); it goes
+        on in double precision only when a phase fails; 0: in double precision throughout.
     what : str
         Names the system in error messages (``"3 x 1977 unknowns of the stick/slip set"``).
 
@@ -273,16 +274,27 @@ class LinearSolver:
         single = getattr(system, "matvec_single", None)
         inner = single if rtol >= self.single_from else None
         x = np.zeros(n)
-        if inner is None and single is not None and self.single_start and tol < self.single_start * np.linalg.norm(b):
-            # the first reduction in single precision, the rest in double from its residual
-            x, ok, its = fgmres(system.matvec, b, prec, tol=self.single_start * float(np.linalg.norm(b)),
-                                restart=self.restart, maxiter=self.maxiter, inner=single, basis=np.float32)
+        done = False
+        if inner is None and single is not None and self.single_start:
+            # iterative refinement: phases in single precision, each reducing the residual
+            # left (recomputed in double) by at most single_start (a phase ends on its true
+            # residual); in double from the residual left only if a phase fails
+            while not done:
+                goal = max(tol, self.single_start * float(np.linalg.norm(b)))
+                dx, ok, its = fgmres(system.matvec, b, prec, tol=goal, restart=self.restart, maxiter=self.maxiter,
+                                     inner=single, basis=np.float32)
+                self.iterations += its
+                if not ok:
+                    break
+                x += dx
+                done = goal == tol
+                if not done:
+                    b = b - system.matvec(dx)
+        if not done:
+            dx, ok, its = fgmres(system.matvec, b, prec, tol=tol, restart=self.restart, maxiter=self.maxiter,
+                                 inner=inner, basis=np.float64 if inner is None else np.float32)
+            x += dx
             self.iterations += its
-            b = b - system.matvec(x)
-        dx, ok, its = fgmres(system.matvec, b, prec, tol=tol, restart=self.restart, maxiter=self.maxiter,
-                             inner=inner, basis=np.float64 if inner is None else np.float32)
-        x += dx
-        self.iterations += its
         if not ok or not np.isfinite(x).all():
             raise self.error(f"GMRES did not reduce the residual by {rtol:.1e} on {what or f'{n} unknowns'} "
                              f"in {its} iterations" + (f"; {hint}" if hint else ""))

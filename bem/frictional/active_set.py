@@ -62,10 +62,15 @@ SETTLED = 1e-5
 #: (:meth:`~bem.frictional.system.SetSystem.matvec_single`), the residual at each
 #: cycle's end in double
 SINGLE_FROM = LOOSE_REDUCTION
-#: a tight solve reduces its residual by this first as a loose one does (products and Krylov
-#: vectors in single precision), then goes on in double from the residual left. Measured,
-#: section 11 at 513 x 513 (the last, tight solve, from the last loose one's state): all in
-#: double 31 GMRES iterations, 2.67 s; 1e-4 in single then double 20 + 12, 1.46 + 0.43 s
+#: a tight solve is iterative refinement: phases that each reduce the residual left by this
+#: as a loose solve does (products and Krylov vectors in single precision), the residual
+#: recomputed in double between them (:class:`bem.linear.LinearSolver`'s ``single_start``).
+#: Measured, section 11 at 513 x 513 (the last, tight solve, from the last loose one's
+#: state): all in double 31 GMRES iterations, 2.67 s; 1e-4 in single then double 20 + 12,
+#: 1.46 + 0.43 s. Then every phase in single (session 35), the issue-11 case at 121 x 121
+#: solved from zero to the residual floor on its converged state: 49 iterations in 228-251
+#: ms against 47 (16 single, 31 double) in 270-361 ms (medians of 8, three alternations);
+#: the same fine-grid iteration counts on the benchmark grids
 SINGLE_START = LOOSE_REDUCTION
 #: a solve stops once its residual is below this fraction of ``|b|`` (-), whatever the
 #: reduction asked: the last, tight solve starts near 1e-9 |b| and its 1e-10 reduction
