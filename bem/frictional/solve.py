@@ -243,14 +243,27 @@ def _coarse_solution(setup: RollingSetup, friction: Friction, progress, normal=N
     start; :func:`bem.frictional.starts.coarse_start` turns it into the fine grid's start
     sets): most of the stick/slip border is then in place and the fine grid needs a few
     iterations for the rest and for the slip directions. ``None`` below 625 nodes, on
-    even-sized grids and when the coarse solve fails. ``normal``: the coarse grid's
-    frictionless solution when known (the fine frictionless solve's ``coarse``, the same
-    solve)."""
+    even-sized grids, when the coarse solve fails, and when the coarse level would be
+    solved by dense LU under a level solved by GMRES (its frictionless contact ``normal``
+    known: at most ``friction.dense_limit`` unknowns there, more than that with four times
+    its contact nodes): building and factorising a dense system at every iteration there
+    cost more than the iterations it saved the level above. Measured
+    (whole solves alternated with and without that level, median ratios): issue-11 case
+    121 x 121 0.937-0.943 (its 16 x 16 level, about 370 unknowns, 58 ms of the calling
+    thread's coarse phase; the 31 x 31 level then takes one iteration more), 61 x 61
+    0.998, section 11 at 129 x 129 1.03 (its 17 x 17 level; the coarse phase there ends
+    with the fine frictionless solve on the other thread), with the same fine-grid paths.
+    ``normal``: the coarse grid's frictionless solution when known (the fine frictionless
+    solve's ``coarse``, the same solve)."""
     ops = setup.ops
     Ky, Kx = ops.grid.shape
     coarse = coarse_grid(ops.grid)
     if coarse is None:
         return None
+    if normal is not None and normal.grid.shape == coarse.shape:
+        nodes, glob = int((normal.force > 0).sum()), (setup.load is not None) + (setup.omega is None)
+        if 3 * nodes + glob <= friction.dense_limit < 12 * nodes + glob:
+            return None
 
     def fine(a):
         return a.reshape(Ky, Kx)[::2, ::2]

@@ -301,6 +301,32 @@ def test_coarse_start_runs_and_ends_on_the_direct_state(big_kernels, monkeypatch
     np.testing.assert_allclose(direct.force_x, res.force_x, rtol=0, atol=1e-9 * res.force.max())
 
 
+def test_a_dense_coarse_level_under_a_gmres_level_is_skipped(big_kernels):
+    """The coarse 13 x 13 level is solved when it and the 25 x 25 grid are both dense
+    (the default ``dense_limit``) or both by GMRES, and skipped when it alone would be
+    dense (``dense_limit`` between its unknowns and four times them): the fine grid then
+    starts from its frictionless start and ends on the same state."""
+    p = problem(grid=BIG)
+    X, Y = BIG.coordinates()
+    normal = solve_normal(ComplianceOperator(BIG, big_kernels["ww"]), p.indenter.profile(X, Y), load=20.0,
+                          dense_limit=0, rtol=1e-11)
+    nodes = int((normal.coarse.force > 0).sum())  # the coarse level's contact
+    assert normal.coarse.grid.shape == (13, 13) and nodes > 10
+    glob = 1 + (Friction(0.3).omega is None)  # d (load control) and a free Omega
+    states = {}
+    for limit, coarse in ((Friction(0.3).dense_limit, True), (0, True), (3 * nodes + glob, False),
+                          (12 * nodes + glob - 1, False), (12 * nodes + glob, True), (3 * nodes + glob - 1, True)):
+        lines = []
+        res, _ = solve_friction(p, Friction(0.3, dense_limit=limit), kernels=big_kernels, energy=False,
+                                progress=lines.append)
+        assert any(ln.startswith("coarse 13 x 13: friction 1: ") for ln in lines) == coarse, limit
+        states[limit] = res
+    first = states[Friction(0.3).dense_limit]
+    for res in states.values():
+        assert np.array_equal(res.stick, first.stick) and np.array_equal(res.contact, first.contact)
+        np.testing.assert_allclose(res.force_x, first.force_x, rtol=0, atol=1e-9 * first.force.max())
+
+
 def test_the_coarse_level_reuses_the_fine_frictionless_solve_s_coarse_solution(big_kernels, monkeypatch):
     """One frictionless solve for the two levels: the coarse level is handed the fine
     solve's ``coarse`` (the same problem on every other node), and a coarse level that
