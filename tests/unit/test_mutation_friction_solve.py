@@ -1308,6 +1308,35 @@ def test_coarse_level_settles_without_the_tight_solve(big_kernels, monkeypatch):
     np.testing.assert_allclose(full.force_x, settled.force_x, rtol=0, atol=1e-9 * full.force.max())
 
 
+@pytest.mark.parametrize("fraction", [0.0, 0.05, 0.1, 1.0])
+@pytest.mark.parametrize("friction", MODES[:4] + [Friction(0.3, "omega", omega=0.98 * V / R)],
+                         ids=lambda f: f"{f.mode}-{f.omega}")
+def test_a_coarse_level_ends_with_a_few_set_changes_left(big_kernels, monkeypatch, friction, fraction):
+    """The coarse level ends at its first solve whose slip misfit is at most
+    COARSE_SETTLE and whose sets change by at most SETTLE_CHANGES of its contact nodes
+    (read from its progress lines); 0 waits for the sets to repeat. (With ``Omega = 0.98
+    V / R`` the 21 coarse contact nodes change by 8, 2, 0 at misfits 0.036, 0.19, 0.018:
+    3, 3, 2 and 1 solves for the four fractions.) The fine grid ends on the state it
+    reaches from the default."""
+    import bem.frictional.active_set as fa
+
+    monkeypatch.setattr(fa, "SETTLE_CHANGES", fraction)
+    lines = []
+    res, _ = solve_friction(problem(grid=BIG), friction, kernels=big_kernels, energy=False, progress=lines.append)
+    steps = [re.match(r"coarse 13 x 13: friction \d+: (\d+) contact, .* -(\d+) \+(\d+) contact, \+(\d+) slip, "
+                      r"\+(\d+) stick, slip misfit (\S+)", ln) for ln in lines if ln.startswith("coarse 13 x 13: ")]
+    assert steps and all(steps)
+    ends = [int(m[2]) + int(m[3]) + int(m[4]) + int(m[5]) <= fraction * int(m[1]) and float(m[6]) <= 0.3
+            for m in steps]
+    assert ends[-1] and not any(ends[:-1])
+    if friction.omega == 0.98 * V / R:
+        assert len(steps) == {0.0: 3, 0.05: 3, 0.1: 2, 1.0: 1}[fraction]
+    monkeypatch.setattr(fa, "SETTLE_CHANGES", 0.01)
+    ref, _ = solve_friction(problem(grid=BIG), friction, kernels=big_kernels, energy=False)
+    assert np.array_equal(res.stick, ref.stick) and np.array_equal(res.contact, ref.contact)
+    np.testing.assert_allclose(res.force_x, ref.force_x, rtol=0, atol=1e-9 * ref.force.max())
+
+
 @pytest.mark.parametrize("misfit, changes, careful, dense, tight", [
     (np.inf, True, False, False, False),  # the first solve
     (1e-2, False, False, False, True),  # the sets repeat: tight from 1e-2 on
