@@ -888,10 +888,10 @@ def _replay(kernels, setup, friction, start, expect_error=None):
     set change only from 1e-5, in one-node updates or by dense LU); the cycle bookkeeping (a state counted when the sets change and
     the slip law has settled below set_tol or the contact changes) and, when the run
     ends on a cycle, the step and the figures of the error; the loose solves' reduction
-    (1e-3 after at most 20 changes, 1e-4 else); the local row solves (after 1 to 20
-    stick/slip changes with the contact unchanged, outside one-node updates and dense LU,
-    on the changed nodes of the predicted state; their sets, directions and slopes taken
-    when they ran more than one round, the next solve then at 1e-4). Returns the step
+    (3e-3); the local row solves (after 1 to 20 stick/slip changes with the contact
+    unchanged, outside one-node updates and dense LU, on the changed nodes of the
+    predicted state; their sets, directions and slopes taken when they ran more than one
+    round). Returns the step
     counts by kind, the result and the states, and the predicted error (step, cone excess,
     reversed slip, misfit, contact violation) or None."""
     import bem.frictional.active_set as act
@@ -938,7 +938,6 @@ def _replay(kernels, setup, friction, start, expect_error=None):
     counts = {"all": 0, "drop": 0, "add": 0, "slip": 0, "stick": 0, "held": 0, "local": 0}
     dropped = np.zeros(s.size, bool)
     seen, careful, reentry, predicted, prev_misfit, prev_changes = {}, False, False, None, np.inf, True
-    few = False  # the next loose solve reduces by FEW_REDUCTION
     for i, (st, (N, Sx, Sy, d, om)) in enumerate(zip(states, sols)):
         N2, X2, Y2 = (a.reshape(GRID.shape) for a in (N, Sx, Sy))
         delta = (_apply(GRID, K["ww"], N2) - _apply(GRID, K["wu"], X2) - _apply(GRID, K["wv"], Y2)).ravel()
@@ -966,7 +965,7 @@ def _replay(kernels, setup, friction, start, expect_error=None):
         dense = 3 * c.sum() + (setup.load is not None) + omega_free <= friction.dense_limit
         tight = prev_misfit <= 1e-2 and (not prev_changes or prev_misfit <= 1e-5 or careful or dense)
         assert (reductions[i] is None) == tight, f"step {i + 1}: tight {tight}, reduction {reductions[i]}"
-        assert tight or reductions[i] == (1e-3 if few else 1e-4), f"step {i + 1}: reduction {reductions[i]}"
+        assert tight or reductions[i] == 3e-3, f"step {i + 1}: reduction {reductions[i]}"
         counts["held"] += prev_misfit <= 1e-2 and not tight  # inexact only for the set change
         prev_misfit, prev_changes = misfit, changes
         join = add & (wmag > 0) & (not omega_free) & (np.abs(V_ - om * ell) > 1e-2 * V_)
@@ -1022,14 +1021,13 @@ def _replay(kernels, setup, friction, start, expect_error=None):
             break
         nxt = states[i + 1]
         n_changes = int(drop.sum() + add.sum() + to_slip.sum() + to_stick.sum())
-        few = n_changes <= 20
         rows = None
         if 0 < n_changes <= 20 and c.sum() >= act.LOCAL_FROM and not (careful or drop.any() or add.any() or dense):
             state, changed, rows = local.pop(0)
             assert np.array_equal(state.contact, nc) and np.array_equal(state.stick, ns), f"step {i + 1}: local"
             assert np.array_equal(changed, np.flatnonzero(ns != k)), f"step {i + 1}: local rows' nodes"
             if rows[3] > 1:
-                ns, few = rows[0].stick, False
+                ns = rows[0].stick
                 counts["local"] += 1
             else:
                 rows = None

@@ -321,7 +321,7 @@ def test_a_tight_solve_at_the_residual_floor_ends_the_iteration(monkeypatch, ang
 def test_the_first_solve_from_given_forces_is_asked_its_tolerance_of_b(monkeypatch, given):
     """With ``forces`` (the coarse grid's) the first solve asks START_REDUCTION of ``|b|``
     (``of_b``); the first without them LOOSE_REDUCTION of its own residual, and every later
-    one FEW_REDUCTION of its own (the sets never change; the misfit, every slip velocity
+    one LOOSE_REDUCTION of its own (the sets never change; the misfit, every slip velocity
     30 degrees off its force, stays 0.5: never tight)."""
     layer = CountingLayer(lambda state: _base(state, np.pi / 6), 5)
     start = _state(C0, stick=C0[:3])
@@ -329,4 +329,5 @@ def test_the_first_solve_from_given_forces_is_asked_its_tolerance_of_b(monkeypat
     with pytest.raises(FrictionNotConverged):
         layer.run(monkeypatch, start, Friction(MU, "omega", omega=OMEGA, max_iter=3), forces=forces)
     first = (act.START_REDUCTION, True) if given else (act.LOOSE_REDUCTION, False)
-    assert layer.asked == [first, (act.FEW_REDUCTION, False), (act.FEW_REDUCTION, False)]
+    assert layer.asked == [first, (act.LOOSE_REDUCTION, False), (act.LOOSE_REDUCTION, False)]
+    assert act.LOOSE_REDUCTION == 3e-3 and act.START_REDUCTION == 1e-5
