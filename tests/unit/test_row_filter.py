@@ -2,6 +2,8 @@
 defines it, its transform against a translation, and what it is for (fewer GMRES
 iterations on a converged frictional state)."""
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 
@@ -167,10 +169,15 @@ def test_the_long_wave_blend_cuts_gmres_iterations_on_longer_runs(monkeypatch):
 
 def test_a_filtered_solve_ends_on_the_lines_alone_state(kernels, monkeypatch):
     """The filter changes the path, not the answer: the same contact and stick sets and
-    forces within 1e-9 of the largest with ``FILTER_POWER = 0``."""
-    a, _ = solve_friction(PROBLEM, FRICTION, kernels=kernels, energy=False)
+    forces within 1e-9 of the largest with ``FILTER_POWER = 0``, both runs converged to a
+    slip misfit of 1e-9 (``direction_tol``; with the default 1e-7 a run may end at any
+    misfit below it: measured, the lines alone ended at 8.1e-8, forces 5.4e-9 of the
+    largest from the run that went on to 3e-11)."""
+    friction = replace(FRICTION, direction_tol=1e-9)
+    a, _ = solve_friction(PROBLEM, friction, kernels=kernels, energy=False)
     monkeypatch.setattr(preconditioner, "FILTER_POWER", 0)
-    b, _ = solve_friction(PROBLEM, FRICTION, kernels=kernels, energy=False)
+    b, _ = solve_friction(PROBLEM, friction, kernels=kernels, energy=False)
+    assert max(a.record.history[-1][2], b.record.history[-1][2]) <= 1e-9
     assert b.record.linear_iterations > a.record.linear_iterations
     assert np.array_equal(a.stick, b.stick) and np.array_equal(a.contact, b.contact)
     scale = a.force.max()
