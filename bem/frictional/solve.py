@@ -54,8 +54,12 @@ START_RTOL = 1e-8
 #: while the coarse frictional levels solve (:func:`_first_solves`). Measured (frictional
 #: solve, alternated pairs against one thread, medians): issue-11 case 61 x 61 1.07x, 121 x
 #: 121 1.06x; section 11 at 129 x 129 1.09x, 257 x 257 1.10x; but the example's 41 x 41
-#: (1681 nodes, a 21 x 21 coarse level) 0.84x: there the two threads mostly wait for the GIL
-OVERLAP_FROM = 3000
+#: (1681 nodes, a 21 x 21 coarse level) 0.84x: there the two threads mostly wait for the GIL.
+#: Session 35 (the 61 x 61 grid's 31 x 31 level now from its frictionless start, the dense
+#: 16 x 16 level skipped), alternated with and without the second thread (20 pairs): issue-11
+#: case 61 x 61 wall 1.006, CPU 0.875 (3721 nodes: one thread now); 121 x 121 wall 0.906
+#: (16 pairs), CPU 1.07 with it
+OVERLAP_FROM = 4000
 
 
 def solve_friction(problem: Problem, friction: Friction, progress: Callable[[str], None] | None = None,
