@@ -92,9 +92,9 @@ class RowInverses:
     them:
 
     * ``dense`` (default: ``M <=`` :data:`DENSE_UPTO`): the inverses themselves, built for
-      the run lengths asked for (:meth:`inverse`; the formula entry by entry, ``T^{-1}[i,
-      j] = T^{-1}[i - 1, j - 1] + D[i, j]``, ``O(n^2)`` a length) and kept; the runs of one
-      length are solved by one matrix product (:class:`GroupedRuns`);
+      the run lengths asked for (:meth:`inverse`, by bordering from the same columns,
+      :meth:`_build`) and kept; the runs of one length are solved by one matrix product
+      (:class:`GroupedRuns`);
     * else by transforms of length ``F >= 2 M - 1``: ``U`` is a correlation, ``L`` a
       convolution, each a product of spectra.
 
