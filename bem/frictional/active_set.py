@@ -13,8 +13,9 @@ switches to one-node updates; a cycle there is accepted within ``set_tol``, then
 returning nodes join in slip, then it raises :class:`FrictionNotConverged`.
 
 The solves are inexact (GMRES reducing the residual by :data:`LOOSE_REDUCTION`) until the
-slip law has nearly settled, then tight. On large contacts a few stick/slip changes are first followed along their
-grid rows by local solves (:mod:`bem.frictional.local`, :data:`LOCAL_FROM`).
+slip law has nearly settled, then tight. On large contacts a few stick/slip changes are
+first followed along their grid rows by local solves (:mod:`bem.frictional.local`,
+:data:`LOCAL_FROM`).
 """
 
 from __future__ import annotations
