@@ -1,40 +1,56 @@
 """Spectral boundary-element method for contact on a bonded incompressible viscoelastic
-layer in a moving frame (Zehil and Gavin 2013).
+layer in a moving frame (Zehil and Gavin 2013). SI units throughout.
 
-Layer compliance in Fourier space (:mod:`bem.layer`), influence kernels as the paper's
-truncated Fourier sums (:mod:`bem.spectral`), the nodal compliance operator
-(:mod:`bem.operator`), indenters, and the frictionless contact solver with its rolling
-resistance (:mod:`bem.contact`, :mod:`bem.problem`). SI units throughout.
+One entry point, :func:`solve`::
 
-Entry points: :func:`solve_frictionless` (frictionless contact of a :class:`Problem`, at
-rest or rolling; in plane strain, a :class:`LineCylinder` on a :class:`LineGrid`, it
-calls :func:`solve_line` and returns a :class:`LineContact`, per unit length) and :func:`solve_friction` (steady rolling or sliding with Coulomb
-friction, :class:`Friction`; the solver is the package :mod:`bem.frictional`); on
-prepared operators, :func:`solve_normal` and :func:`bem.frictional.solve_rolling`. Both
+    from bem import Grid, Layer, Loading, Problem, Sphere, ThreeParameterSolid, solve
+
+    layer = Layer(5e-3, ThreeParameterSolid(G0=3e6, tau=0.25, f=1.0), density=1000.0)
+    grid = Grid.centred((2.5e-4, 2.5e-4), (0.2, 0.2), (400, 400), (5e-3, 5e-3))
+    result = solve(Problem(layer, Sphere(0.02), grid, Loading(speed=0.05, load=150.0)))
+    result.rolling_resistance, result.rolling_resistance_energy, result.leading_edge
+
+A :class:`Problem` composes a :class:`Layer` (thickness, material, density), an indenter
+(:class:`Sphere`, :class:`Paraboloid`, :class:`Cylinder`, :class:`HeightMap`; or a
+:class:`LineCylinder` on a :class:`LineGrid` for a line contact in plane strain, per unit
+length), a :class:`Grid` and a :class:`Loading` (speed, load or indentation). Without
+friction :func:`solve` returns a :class:`NormalContact` (a :class:`LineContact` in plane
+strain): the fields, the scalars, the rolling figures (dissipation, the pressure's power,
+the contact's edges on ``y = 0``) and the solve record. With ``friction`` a
+:class:`Friction` it returns a :class:`FrictionalContact` (steady rolling or sliding with
+Coulomb friction, the solver of :mod:`bem.frictional`).
+
+Modules: the layer's compliance in Fourier space (:mod:`bem.layer`), influence kernels as
+the paper's truncated Fourier sums (:mod:`bem.spectral`), the nodal compliance operator
+(:mod:`bem.operator`), the frictionless contact solver (:mod:`bem.contact`, and on
+prepared operators :func:`bem.contact.solve_normal`), its results (:mod:`bem.result`),
+plane strain (:mod:`bem.plane`), the layer's dissipation (:mod:`bem.energy`), the
+frictional solver (:mod:`bem.frictional`, on prepared operators
+:func:`bem.frictional.solve_rolling`) and the driver (:mod:`bem.driver`). Both contact
 solvers' linear solves go through :class:`bem.linear.LinearSolver`.
 """
 
-from .contact import ContactAtEdge, ContactError, ContactNotConverged, NormalContact, solve_normal
+from .contact import ContactAtEdge, ContactError, ContactNotConverged
+from .driver import solve
+from .energy import viscous_dissipation
+from .frictional import Friction, FrictionalContact, FrictionNotConverged, LoadingUnreachable
 from .grid import Grid
-from .indenters import Cylinder, HeightMap, Paraboloid, Sphere
+from .indenters import Cylinder, HeightMap, LineCylinder, Paraboloid, Sphere
 from .layer import Layer, surface_compliance, surface_compliance_expm
 from .materials import Elastic, MasterCurveTable, Prony, ThreeParameterSolid
 from .operator import ComplianceOperator
-from .problem import Loading, Problem, solve_frictionless
+from .plane import LineContact, LineGrid
+from .problem import Loading, Problem
+from .result import NormalContact
 from .spectral import influence_kernels, influence_kernels_direct
-from .friction import Friction, FrictionalContact, FrictionNotConverged, LoadingUnreachable
-from .frictional import solve_friction
-from .energy import viscous_dissipation
-from .indenters import LineCylinder
-from .plane import LineContact, LineGrid, solve_line
 
 __all__ = [
+    "solve",
     "ComplianceOperator", "ContactAtEdge", "ContactError", "ContactNotConverged", "Cylinder",
     "Elastic", "Grid", "HeightMap", "Layer", "Loading", "MasterCurveTable", "NormalContact",
     "Paraboloid", "Problem", "Prony", "Sphere", "ThreeParameterSolid", "influence_kernels",
-    "influence_kernels_direct", "solve_frictionless", "solve_normal", "surface_compliance",
-    "surface_compliance_expm",
-    "Friction", "FrictionalContact", "FrictionNotConverged", "LoadingUnreachable", "solve_friction",
+    "influence_kernels_direct", "surface_compliance", "surface_compliance_expm",
+    "Friction", "FrictionalContact", "FrictionNotConverged", "LoadingUnreachable",
     "viscous_dissipation",
-    "LineContact", "LineCylinder", "LineGrid", "solve_line",
+    "LineContact", "LineCylinder", "LineGrid",
 ]

@@ -1,5 +1,5 @@
 """Case files to BEM problems: the dict that :mod:`casefile` checked, translated into a
-:class:`bem.problem.Problem` and a :class:`bem.friction.Friction` (schema in
+:class:`bem.problem.Problem` and a :class:`bem.frictional.Friction` (schema in
 ``docs/case-files.md``)."""
 
 from __future__ import annotations
@@ -123,8 +123,8 @@ def problem_from_config(config: dict) -> tuple[Problem, bool]:
 
 
 def friction_from_config(config: dict):
-    """The ``[friction]`` section as :class:`bem.friction.Friction`, or ``None`` if absent."""
-    from .friction import Friction
+    """The ``[friction]`` section as :class:`bem.frictional.Friction`, or ``None`` if absent."""
+    from .frictional.model import Friction
 
     sec = casefile.validate(config, "bem").get("friction")
     return None if sec is None else Friction(**sec)

@@ -14,8 +14,8 @@ import casefile
 
 from .case import friction_from_config, problem_from_config, read_case
 from .contact import ContactError
+from .driver import solve
 from .plane import LineContact
-from .problem import solve_frictionless
 
 
 def _strict(value):
@@ -92,19 +92,14 @@ def main(argv: list[str] | None = None) -> int:
         print(f"bem: error: {exc}", file=sys.stderr)
         return 2
     try:
-        if friction is None:
-            result, timings = solve_frictionless(problem, progress=progress, grow=auto)
-        else:
-            from .frictional import solve_friction
-
-            result, timings = solve_friction(problem, friction, progress=progress)
+        result = solve(problem, friction, progress=progress, grow=auto and friction is None)
     except ValueError as exc:
         print(f"bem: error: {exc}", file=sys.stderr)
         return 2
     except ContactError as exc:
         print(f"bem: error: {type(exc).__name__}: {exc}", file=sys.stderr)
         return 1
-    summary = _strict({**result.summary(), "speed": problem.loading.speed, "timings_s": timings})
+    summary = _strict({**result.summary(), "timings_s": result.record.times})
     if args.json:
         print(json.dumps(summary, indent=2, allow_nan=False))
     elif isinstance(result, LineContact):
@@ -120,6 +115,8 @@ def main(argv: list[str] | None = None) -> int:
         print(f"peak pressure       {result.peak_pressure:.6g} Pa")
     else:
         print(f"rolling resistance  {result.rolling_resistance:.6g} N")
+        if friction is None and problem.loading.speed > 0:
+            print(f"energy figure       {result.rolling_resistance_energy:.6g} N (P_visc / V)")
         print(f"indentation         {result.indentation:.6g} m")
         print(f"contact radius      {result.contact_radius:.6g} m (equivalent, sqrt(area/pi))")
         print(f"load                {result.load:.6g} N")

@@ -26,7 +26,6 @@ to one-node updates; a cycle there raises :class:`ContactNotConverged`.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
 from typing import Callable
 
 import numpy as np
@@ -35,7 +34,9 @@ from scipy.ndimage import binary_dilation
 from .grid import Grid
 from .linear import LinearSolver, bordered, eliminate
 from .operator import ComplianceOperator
+from .result import SHARED_SCALARS, ContactFigures, NormalContact, SolveRecord, grid_summary, pressure_centroid_x
 
+# the result types live in bem.result; importing them from here keeps working
 __all__ = [
     "ContactError", "ContactNotConverged", "ContactAtEdge", "SolveRecord", "ContactFigures", "NormalContact",
     "solve_normal", "grid_summary", "pressure_centroid_x", "SHARED_SCALARS", "NormalSystem", "coarse_grid",
@@ -53,128 +54,6 @@ class ContactNotConverged(ContactError):
 
 class ContactAtEdge(ContactError):
     """The contact reaches the border of the candidate region: the region is too small."""
-
-
-@dataclass(frozen=True)
-class SolveRecord:
-    """How a solve went, in the vocabulary of every solver of the project: active-set
-    ``iterations``, ``history`` (contact-node counts per iteration), ``linear_solver``
-    (``dense`` or ``gmres``) and its total ``linear_iterations``, and the final
-    complementarity ``residual`` ``max(|min(F, h)|)`` relative to the indentation scale."""
-
-    iterations: int
-    history: tuple
-    linear_solver: str
-    linear_iterations: int
-    residual: float
-
-
-class ContactFigures:
-    """The figures of a contact result computed from its ``grid`` and its compressive nodal
-    forces ``force`` (N): pressure, contact set, area, equivalent radius, peak pressure
-    and the centre of pressure (shared by :class:`NormalContact` and
-    :class:`bem.friction.FrictionalContact`)."""
-
-    @property
-    def pressure(self) -> np.ndarray:
-        """Nodal pressure ``force / (a_x a_y)`` (Pa)."""
-        return self.force / self.grid.cell_area
-
-    @property
-    def contact(self) -> np.ndarray:
-        """Nodes in contact (``force > 0``)."""
-        return self.force > 0
-
-    @property
-    def contact_area(self) -> float:
-        """Area of the contact patches, ``a_x a_y`` per contact node (m^2)."""
-        return float(self.contact.sum()) * self.grid.cell_area
-
-    @property
-    def contact_radius(self) -> float:
-        """Equivalent radius ``sqrt(area / pi)`` (m): the radius of the disc of the same
-        area, which moves smoothly with the load instead of by whole node spacings."""
-        return math.sqrt(self.contact_area / math.pi)
-
-    @property
-    def peak_pressure(self) -> float:
-        """Largest nodal pressure (Pa)."""
-        return float(self.pressure.max())
-
-    @property
-    def pressure_centroid_x(self) -> float:
-        """``x`` of the resultant normal force (m); ``> 0`` means shifted to the leading edge."""
-        return pressure_centroid_x(self.grid, self.force)
-
-
-@dataclass(frozen=True)
-class NormalContact(ContactFigures):
-    """Result of a frictionless contact solve; fields are ``(K_y, K_x)`` arrays.
-
-    Attributes
-    ----------
-    grid : Grid
-    force : ndarray
-        Compressive nodal forces ``F`` (N).
-    deflection : ndarray
-        Downward surface displacement ``u = C F`` (m).
-    gap : ndarray
-        ``h = s - d + u`` (m), ``>= 0``.
-    indentation : float
-        ``d`` (m).
-    load : float
-        ``P = sum F`` (N).
-    rolling_resistance : float
-        ``R_r = sum F_i arm_i`` (N), the paper's ``sum F_i x_i / R`` for round indenters.
-    record : SolveRecord
-    coarse : NormalContact or None
-        The same problem solved on every other node (:func:`coarse_grid`), whose contact
-        set started this solve; ``None`` when there was none. The frictional solver's own
-        coarse levels reuse it instead of solving it again.
-    """
-
-    grid: Grid
-    force: np.ndarray
-    deflection: np.ndarray
-    gap: np.ndarray
-    indentation: float
-    load: float
-    rolling_resistance: float
-    record: SolveRecord
-    coarse: NormalContact | None = field(default=None, repr=False, compare=False)
-
-    def summary(self) -> dict:
-        """The scalars (SI units), the grid and the solve record as a JSON-ready dict; the
-        keys it shares with :meth:`bem.friction.FrictionalContact.summary` and
-        ``fem_reference.ContactResult.summary`` name the same quantities."""
-        r = self.record
-        return {
-            **{name: getattr(self, name) for name in SHARED_SCALARS},
-            "grid": grid_summary(self.grid),
-            "solver": {"iterations": r.iterations, "residual": r.residual, "history": list(r.history),
-                       "linear_solver": r.linear_solver, "linear_iterations": r.linear_iterations},
-        }
-
-
-#: the scalars every BEM result reports under the same names (SI units)
-SHARED_SCALARS = ("rolling_resistance", "indentation", "contact_radius", "load", "peak_pressure", "contact_area",
-                  "pressure_centroid_x")
-
-
-def pressure_centroid_x(grid: Grid, force: np.ndarray) -> float:
-    """``x`` (m) of the resultant of the compressive nodal forces ``force`` (N) on ``grid``."""
-    X, _ = grid.coordinates()
-    return float((force * X).sum() / force.sum())
-
-
-def grid_summary(grid: Grid) -> dict:
-    """Nodes, spacing (m), period (m) and truncation of a grid, as lists ``[x, y]``."""
-    return {
-        "nodes": [grid.nodes_x, grid.nodes_y],
-        "spacing": [grid.spacing_x, grid.spacing_y],
-        "period": [grid.period_x, grid.period_y],
-        "truncation": [grid.truncation_x, grid.truncation_y],
-    }
 
 
 def edge_nodes(shape: tuple[int, int]) -> np.ndarray:
@@ -260,7 +139,8 @@ class NormalSystem:
 #: products, circulant-inverse preconditioner): dense LU costs ``O(n^3)``. Measured (CPU,
 #: one thread, the whole solve with its coarse-grid starts; 3000 -> 300 or 0): section 11
 #: at 41 x 41 0.20 -> 0.06 s, at 129 x 129 2.54 -> 0.47 s, at 257 x 257 3.05 -> 1.33 s;
-#: issue 11's case at 61 x 61 (1977 contact nodes) 1.00 -> 0.13 s
+#: the CONTACT comparison case (benchmarks/bem_friction_rolling.py) at 61 x 61 (1977 contact
+#: nodes) 1.00 -> 0.13 s
 DENSE_LIMIT = 300
 
 
@@ -449,9 +329,6 @@ def solve_normal(
     rr = float((F * np.asarray(arm).ravel()).sum()) if arm is not None else math.nan
     record = SolveRecord(it, tuple(history), "gmres" if solve.used_gmres else "dense", solve.iterations, resid)
     shape = grid.shape
-    return NormalContact(grid, F.reshape(shape), u.reshape(shape), h.reshape(shape), float(d), float(F.sum()), rr, record,
-                         coarse)
+    return NormalContact(grid, F.reshape(shape), u.reshape(shape), h.reshape(shape), float(d), float(F.sum()), rr,
+                         record, coarse)
 
-
-# former private names, kept for callers that imported them
-_coarse_grid, _edge_nodes = coarse_grid, edge_nodes

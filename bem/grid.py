@@ -109,3 +109,12 @@ class Grid:
     def coordinates(self) -> tuple[np.ndarray, np.ndarray]:
         """``X, Y`` (m), each of shape ``(nodes_y, nodes_x)``."""
         return np.meshgrid(self.x, self.y)
+
+    def summary(self) -> dict:
+        """Nodes, spacing (m), period (m) and truncation, as lists ``[x, y]``."""
+        return {
+            "nodes": [self.nodes_x, self.nodes_y],
+            "spacing": [self.spacing_x, self.spacing_y],
+            "period": [self.period_x, self.period_y],
+            "truncation": [self.truncation_x, self.truncation_y],
+        }

@@ -25,7 +25,7 @@ Two independent evaluations live here:
   (the common growth ``exp(kappa H)`` cancels in ``N M^-1``), so the result is finite
   and accurate from ``kH = 0`` to the half-space limit.
 
-Transcription note (checked by ``tests/unit/test_derivation_eq45.py``): eq. 27 of the
+Transcription note (checked by ``tests/bem/test_layer_derivation.py``): eq. 27 of the
 paper prints ``beta_y = (nu_x^2 + 4 nu_y^2) G* - rho V^2 nu_y^2``. The inertia term comes
 from ``rho V^2 d^2/dx^2`` (eqs. 8, 35) and is ``- rho V^2 nu_x^2`` in every diagonal
 entry; :func:`system_matrix` uses the corrected form.

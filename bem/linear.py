@@ -173,9 +173,9 @@ def bordered(forces, rows, parts):
 
     exact for the bordered matrix when ``M = A^{-1}``; ``parts`` of an earlier ``M`` give an
     inexact but fixed elimination (a flexible GMRES takes either). Passing the global rows
-    on unchanged instead (the former treatment of both contact solvers) leaves outliers in
+    on unchanged instead leaves outliers in
     the preconditioned spectrum whose vectors lie on the global unknowns
-    (``BENCHMARKS.md``, issue 11's twelfth pass)."""
+    (``docs/frictional-solver.md``)."""
     MF, S_inv = parts
     m, k = MF.shape
 

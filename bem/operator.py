@@ -20,9 +20,9 @@ __all__ = ["ComplianceOperator", "THREADED_FROM", "fft_workers", "one_worker"]
 #: FFTs of an embedding with this many points or more run on every core, smaller ones on
 #: one (a small transform costs less than handing it over). Measured, whole solves with the
 #: two settings alternated in one process (median of the pairs' ratios, one thread / every
-#: core): the frictionless solver, issue 11's case at 61 x 61 (embedding 128 x 128) 0.65,
-#: 121 x 121 0.72, section 11 41 x 41 0.57, 129 x 129 (258 x 258) 0.76, 257 x 257 (514 x 514)
-#: 1.20; the frictional one (on the contact's box) 61 x 61 (108 x 108) 0.84, 121 x 121 0.93,
+#: core): the frictionless solver, the CONTACT comparison case at 61 x 61 (embedding
+#: 128 x 128) 0.65, 121 x 121 0.72, section 11 41 x 41 0.57, 129 x 129 (258 x 258) 0.76,
+#: 257 x 257 (514 x 514) 1.20; the frictional one (on the contact's box) 61 x 61 (108 x 108) 0.84, 121 x 121 0.93,
 #: 41 x 41 0.85, 129 x 129 (225 x 216) 0.99, 257 x 257 (450 x 405) 0.95 and 1.06
 THREADED_FROM = 100_000
 

@@ -17,28 +17,25 @@ inertia ``rho V^2`` as in 3D (:mod:`bem.layer`).
 :class:`bem.operator.ComplianceOperator` and :func:`bem.contact.solve_normal` read (its
 ``cell_area`` is the spacing: the patch area per unit length, m), so the 3D contact
 solver runs unchanged on it; forces are then per unit length (N/m) and pressures in Pa.
-:func:`solve_line` solves a :class:`bem.problem.Problem` whose indenter is a
-:class:`bem.indenters.LineCylinder` and returns a :class:`LineContact`.
+:func:`bem.solve` solves a :class:`bem.problem.Problem` whose indenter is a
+:class:`bem.indenters.LineCylinder` on a :class:`LineGrid` and returns a
+:class:`LineContact`.
 """
 
 from __future__ import annotations
 
 import math
-import time
-from dataclasses import dataclass, replace
-from typing import Callable
+from dataclasses import dataclass
 
 import numpy as np
 
-from .contact import SHARED_SCALARS, ContactAtEdge, NormalContact, solve_normal
 from .layer import Layer, normal_compliance_outer
-from .operator import ComplianceOperator
+from .result import NormalContact
 from .spectral import chirp_sum
-from .speed import check_subsonic
 
 __all__ = [
     "LineGrid", "LineContact", "line_mode_symbols", "line_kernel", "line_kernel_direct",
-    "line_dissipation", "contact_edges", "edges_along", "solve_line",
+    "line_dissipation", "contact_edges", "edges_along",
 ]
 
 
@@ -300,22 +297,12 @@ class LineContact(NormalContact):
 
     Units change with the dimension: ``force`` is the nodal line load (N/m), ``load`` the
     load per unit length (N/m), ``rolling_resistance`` ``sum F x / R`` (N/m),
-    ``contact_area`` the contact length (m: the loaded nodes' patches); ``pressure``
-    stays in Pa and ``indentation``, ``deflection``, ``gap`` in m.
-
-    Attributes
-    ----------
-    trailing_edge, leading_edge : float
-        The contact's edges (m), from :func:`contact_edges`; ``x > 0`` is ahead.
-    rolling_resistance_energy : float
-        ``P_visc / V`` (N/m) from :func:`line_dissipation` (NaN at rest): the energy
-        figure of the rolling resistance, equal to it in steady rolling up to the
-        discretization.
+    ``contact_area`` the contact length (m: the loaded nodes' patches), ``dissipation``
+    and ``pressure_power`` W/m (the dissipation from :func:`line_dissipation`),
+    ``rolling_resistance_energy`` N/m; ``pressure`` stays in Pa and ``indentation``,
+    ``deflection``, ``gap``, ``trailing_edge`` and ``leading_edge`` (:func:`contact_edges`)
+    in m.
     """
-
-    trailing_edge: float = math.nan
-    leading_edge: float = math.nan
-    rolling_resistance_energy: float = math.nan
 
     @property
     def contact_radius(self) -> float:
@@ -344,79 +331,8 @@ class LineContact(NormalContact):
         return self.pressure[0]
 
     def summary(self) -> dict:
-        """As :meth:`NormalContact.summary` (same names), plus ``trailing_edge``,
-        ``leading_edge``, ``half_width``, ``contact_centre`` (m) and
-        ``rolling_resistance_energy`` (N/m), ``"model": "plane strain"`` and the grid as
-        lists of one entry; forces per unit length (N/m)."""
-        r = self.record
-        out = {name: getattr(self, name) for name in SHARED_SCALARS}
-        out.update({
-            "solver": {"iterations": r.iterations, "residual": r.residual, "history": list(r.history),
-                       "linear_solver": r.linear_solver, "linear_iterations": r.linear_iterations},
-            "model": "plane strain",
-            "trailing_edge": self.trailing_edge,
-            "leading_edge": self.leading_edge,
-            "half_width": self.half_width,
-            "contact_centre": self.contact_centre,
-            "rolling_resistance_energy": self.rolling_resistance_energy,
-            "grid": self.grid.summary(),
-        })
-        return out
-
-
-# ---------------------------------------------------------------------------------------
-# solve
-
-
-def solve_line(problem, progress: Callable[[str], None] | None = None, grow: bool = False,
-               kernels: dict | None = None, dense_limit: int = 3000) -> tuple[LineContact, dict]:
-    """Frictionless stationary or steady rolling line contact of a
-    :class:`bem.problem.Problem` with a :class:`bem.indenters.LineCylinder` on a
-    :class:`LineGrid` (load control: ``loading.load`` in N/m).
-
-    Returns the :class:`LineContact` and the timings (s) of the kernel and of the solve.
-    With ``grow=True`` a contact that reaches the edge of the region widens the region by
-    half and solves again (up to 0.95 of the radius); otherwise
-    :class:`bem.contact.ContactAtEdge` propagates. ``kernels={"ww": table}`` reuses a
-    :func:`line_kernel` table of this grid, layer and speed (a widened region computes
-    its own).
-    """
-
-    p = problem
-    if not isinstance(p.grid, LineGrid):
-        raise TypeError(f"solve_line needs a LineGrid, got {type(p.grid).__name__}")
-    given = None if kernels is None else kernels["ww"]
-    if given is not None and np.shape(given) != (1, 2 * p.grid.nodes - 1):
-        raise ValueError(f"kernels['ww'] has shape {np.shape(given)}, the line grid of {p.grid.nodes} nodes "
-                         f"needs {(1, 2 * p.grid.nodes - 1)}")
-    while True:
-        check_subsonic(p.layer, p.loading.speed)
-        t0 = time.perf_counter()
-        kernel, given = (line_kernel(p.grid, p.layer, p.loading.speed) if given is None else given), None
-        kernel_s = time.perf_counter() - t0
-        if progress:
-            progress(f"line compliance: {p.grid.nodes} nodes, Nt = {p.grid.truncation}, {kernel_s:.2f} s")
-        op = ComplianceOperator(p.grid, kernel)
-        X, Y = p.grid.coordinates()
-        t1 = time.perf_counter()
-        try:
-            res = solve_normal(op, p.indenter.profile(X, Y), load=p.loading.load,
-                               indentation=p.loading.indentation, arm=p.indenter.rolling_arm(X, Y),
-                               progress=progress, dense_limit=dense_limit)
-        except ContactAtEdge:
-            g = p.grid
-            cap = 0.95 * p.indenter.radius
-            if not grow or g.x[-1] >= 0.9 * cap:
-                raise
-            bigger = LineGrid.centred(g.spacing, g.period, g.truncation, min(1.5 * g.x[-1], cap))
-            if progress:
-                progress(f"contact reached the region's edge: widening to |x| <= {bigger.x[-1]:.4g} m")
-            p = replace(p, grid=bigger)
-            continue
-        solve_s = time.perf_counter() - t1
-        trailing, leading = contact_edges(p.grid, res.force, res.gap)
-        V = p.loading.speed
-        energy = line_dissipation(p.grid, p.layer, V, res.force) / V if V > 0 else math.nan
-        fields = {name: getattr(res, name) for name in NormalContact.__dataclass_fields__}
-        out = LineContact(**fields, trailing_edge=trailing, leading_edge=leading, rolling_resistance_energy=energy)
-        return out, {"kernel_s": kernel_s, "solve_s": solve_s}
+        """As :meth:`NormalContact.summary` (same names, forces per unit length in N/m),
+        plus ``half_width`` and ``contact_centre`` (m), ``"model": "plane strain"`` and
+        the grid as lists of one entry."""
+        return {**super().summary(), "model": "plane strain", "half_width": self.half_width,
+                "contact_centre": self.contact_centre}

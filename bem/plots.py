@@ -52,7 +52,7 @@ def plot_normal_contact(result, path: str | Path, title: str = "") -> Path:
 
 def plot_frictional_contact(result, path: str | Path, title: str = "", max_arrows: int = 24) -> Path:
     """Pressure map, tangential traction vectors and stick/slip map of a
-    :class:`bem.friction.FrictionalContact`, side by side; returns the path.
+    :class:`bem.frictional.FrictionalContact`, side by side; returns the path.
 
     The vectors are the tractions ``(tau_xz, tau_yz)`` on the layer (Pa) at the contact
     nodes, subsampled to at most ``max_arrows`` per direction, over the contour of the

@@ -1,22 +1,21 @@
-"""A contact problem as a composition: layer, indenter, grid and loading; and its solve."""
+"""A contact problem as a composition: layer, indenter, grid and loading; the size of an
+automatic region and the kernels of a problem (solved by :func:`bem.solve`)."""
 
 from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from typing import Callable
 
-from .contact import ContactAtEdge, NormalContact, solve_normal
 from .grid import Grid
 from .layer import Layer
 from .indenters import LineCylinder
-from .operator import ComplianceOperator
-from .plane import LineGrid, solve_line
+from .plane import LineGrid
 from .spectral import influence_kernels
 from .speed import RAYLEIGH_RATIO, check_subsonic  # noqa: F401  (public here too)
 
-__all__ = ["Loading", "Problem", "check_subsonic", "compute_kernels", "solve_frictionless", "auto_half_width"]
+__all__ = ["Loading", "Problem", "check_subsonic", "compute_kernels", "auto_half_width"]
 
 
 @dataclass(frozen=True)
@@ -124,57 +123,3 @@ def compute_kernels(problem: Problem, blocks, progress: Callable[[str], None] | 
         progress(f"compliance ({len(kernels)} block(s)): {p.grid.nodes_x} x {p.grid.nodes_y} nodes, "
                  f"Nt = {p.grid.truncation_x} x {p.grid.truncation_y}, {seconds:.2f} s")
     return kernels, seconds
-
-
-def solve_frictionless(
-    problem: Problem,
-    progress: Callable[[str], None] | None = None,
-    grow: bool = False,
-    kernels: dict | None = None,
-) -> tuple[NormalContact, dict]:
-    """Frictionless stationary or steady rolling contact (a line contact per unit length,
-    :func:`bem.plane.solve_line`, for a :class:`bem.indenters.LineCylinder`).
-
-    Returns the contact result and the timings (s) of the kernel and of the solve. With
-    ``grow=True`` (an automatically sized region) a contact that reaches the edge of the
-    region widens it by half and solves again; otherwise that raises
-    :class:`bem.contact.ContactAtEdge`. Pass ``kernels`` (at least the ``"ww"`` table of
-    :func:`compute_kernels` for this grid, layer and speed) to reuse them; a widened
-    region computes its own.
-    """
-    p = problem
-    if p.plane_strain:
-        return solve_line(p, progress=progress, grow=grow, kernels=kernels)
-    given = kernels
-    if given is not None and given["ww"].shape != (2 * p.grid.nodes_y - 1, 2 * p.grid.nodes_x - 1):
-        raise ValueError(f"kernels['ww'] has shape {given['ww'].shape}, the grid of {p.grid.nodes_x} x "
-                         f"{p.grid.nodes_y} nodes needs {(2 * p.grid.nodes_y - 1, 2 * p.grid.nodes_x - 1)}")
-    while True:
-        if given is not None:
-            kernels, kernel_s, given = given, 0.0, None
-        else:
-            kernels, kernel_s = compute_kernels(p, ("ww",), progress)
-        op = ComplianceOperator(p.grid, kernels["ww"])
-        t1 = time.perf_counter()
-        X, Y = p.grid.coordinates()
-        try:
-            res = solve_normal(
-                op, p.indenter.profile(X, Y), load=p.loading.load,
-                indentation=p.loading.indentation, arm=p.indenter.rolling_arm(X, Y),
-                progress=progress,
-            )
-        except ContactAtEdge:
-            g = p.grid
-            cap = 0.95 * getattr(p.indenter, "radius", math.inf)  # the region stays under the indenter
-            if not grow or max(g.x[-1], g.y[-1]) >= 0.9 * cap:
-                raise
-            bigger = Grid.centred(
-                (g.spacing_x, g.spacing_y), (g.period_x, g.period_y),
-                (g.truncation_x, g.truncation_y), (min(1.5 * g.x[-1], cap), min(1.5 * g.y[-1], cap)),
-            )
-            if progress:
-                progress(f"contact reached the region's edge: widening to |x| <= {bigger.x[-1]:.4g} m")
-            p = replace(p, grid=bigger)
-            continue
-        t2 = time.perf_counter()
-        return res, {"kernel_s": kernel_s, "solve_s": t2 - t1}

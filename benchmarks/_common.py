@@ -1,7 +1,10 @@
-"""Shared setup of the BEM benchmarks: the paper's section 11 layer and timing helpers."""
+"""Shared setup of the benchmarks: the paper's section 11 layer, timing helpers and the
+Markdown table each script prints with ``--markdown`` (read by ``benchmarks/collect.py``)."""
 
+import os
 import platform
 import resource
+import sys
 import time
 
 from bem import Layer, ThreeParameterSolid
@@ -10,6 +13,7 @@ LAYER = Layer(5e-3, ThreeParameterSolid(G0=3.0e6, tau=0.25, f=1.0), density=1000
 
 
 def machine() -> str:
+    """The CPU model, core count and Python version, for the first line of a report."""
     cpu = "unknown CPU"
     try:
         for line in open("/proc/cpuinfo"):
@@ -18,12 +22,11 @@ def machine() -> str:
                 break
     except OSError:
         pass
-    import os
-
     return f"{cpu}, {os.cpu_count()} cores, Python {platform.python_version()}"
 
 
 def peak_rss_mb() -> float:
+    """Peak resident memory of this process so far (MB)."""
     return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
 
 
@@ -39,3 +42,27 @@ def timed(fn, repeat=5):
         times.append(time.perf_counter() - t)
     times.sort()
     return first, times[len(times) // 2] if times else first, out
+
+
+def markdown_mode() -> bool:
+    """True when ``--markdown`` is on the command line (and removed from it): the script
+    then prints its results table alone on stdout and its running report on stderr."""
+    if "--markdown" in sys.argv:
+        sys.argv.remove("--markdown")
+        return True
+    return False
+
+
+def reporter(markdown: bool):
+    """``print`` for the running report: to stderr in Markdown mode, else to stdout."""
+    def say(*args, **kwargs):
+        kwargs.setdefault("flush", True)
+        print(*args, **kwargs, file=sys.stderr if markdown else sys.stdout)
+    return say
+
+
+def markdown_table(headers, rows) -> str:
+    """A Markdown table: ``headers`` (units in the heads) and one row per case."""
+    lines = ["| " + " | ".join(headers) + " |", "|" + "---|" * len(headers)]
+    lines += ["| " + " | ".join(str(c) for c in row) + " |" for row in rows]
+    return "\n".join(lines)

@@ -1,37 +1,39 @@
-"""Frictional steady rolling against CONTACT's figures (issue 11).
+"""Frictional steady rolling of an elastic paraboloid against CONTACT's figures, and of the
+paper's viscoelastic sphere (section 11) on grids up to 513 x 513.
 
-The issue's case: a rigid paraboloid ``R = 20 mm`` on a thick elastic layer (``H = 0.2 m``,
-``G = 3 MPa``, ``rho = 0``), ``P = 100 N``, ``mu = 0.2``, ``V = 1 m/s``, ``Omega`` prescribed
-so that the creepage ``(V - Omega R) / V = 0.01`` on every row (``l(y) = R`` through
-``Friction.radius``, CONTACT's uniform longitudinal creepage), period ``L = 0.6 m`` (3 H,
-where the period stops mattering; ``--period``), ``Nt = L / 2a``, half-width 6 mm; spacing
-0.2 mm (61 x 61 nodes) and 0.1 mm (121 x 121).
-CONTACT (single thread, same machine, measured by the issue's author): 0.31-0.40 s at
-0.2 mm, 7.8 s at 0.1 mm.
+The elastic paraboloid: a rigid paraboloid ``R = 20 mm`` on a thick elastic layer
+(``H = 0.2 m``, ``G = 3 MPa``, ``rho = 0``), ``P = 100 N``, ``mu = 0.2``, ``V = 1 m/s``,
+``Omega`` prescribed so that the creepage ``(V - Omega R) / V = 0.01`` on every row
+(``l(y) = R`` through ``Friction.radius``, CONTACT's uniform longitudinal creepage), period
+``L = 0.6 m`` (3 H, where the period stops mattering; ``--period``), ``Nt = L / 2a``,
+half-width 6 mm; spacing 0.2 mm (61 x 61 nodes) and 0.1 mm (121 x 121). CONTACT (single
+thread, the same 2-core machine): 0.31-0.40 s at 0.2 mm, 7.8 s at 0.1 mm.
 
-Also the section 11 friction example (``examples/paper-section11-friction.toml``, 41 x 41)
-and the same problem on ``--nodes`` grids (``bem_friction.py``'s large-grid set-up: half-width
-5.2 mm, ``a = 10.4 mm / (nodes - 1)``).
+The viscoelastic sphere: the section 11 friction example
+(``examples/paper-section11-friction.toml``, 41 x 41) and the same problem on ``--nodes``
+grids (``bem_friction.py``'s large-grid set-up: half-width 5.2 mm,
+``a = 10.4 mm / (nodes - 1)``).
 
 Printed per case: kernels (s), the frictionless solve of the same grid (s; the median of
 ``--repeat`` solves, each right before a frictional one; the ratio frictional / frictionless
-is the median of those pairs' ratios), the frictional
-solve (s) and its parts (coarse-grid start, fine active set), active-set and GMRES
-iterations, the result (creep force, stick fraction, R_r) and the peak RSS.
+is the median of those pairs' ratios), the frictional solve (s) and its parts (coarse-grid
+start, fine active set), active-set and GMRES iterations, the result (creep force, stick
+fraction, R_r) and the peak RSS.
 
 ``--old REV`` solves each case with the frictional solver of git revision ``REV`` as
 well (the whole ``bem`` package of ``REV``, from ``git archive``, imported as ``bem_old``),
 right after today's, and prints both and whether they end on the same state (contact and stick
 sets, forces relative to the largest): a paired comparison on a shared machine.
 
-Run (from ``benchmarks/``, ``OPENBLAS_NUM_THREADS=1``), one case a command so that the peak
-RSS is the case's own: ``../.venv/bin/python bem_friction_rolling.py --case contact --spacing
-0.2e-3`` (and ``0.1e-3``), ``--case section11 --nodes 0`` (the example's 41 x 41), ``129``,
-``257``, ``513``; add ``--repeat 3`` for a median, ``--old REV`` for a paired comparison,
+Run (``OPENBLAS_NUM_THREADS=1``), one case a command so that the peak RSS is the case's own:
+``python benchmarks/bem_friction_rolling.py --case contact --spacing 0.2e-3`` (and
+``0.1e-3``), ``--case section11 --nodes 0`` (the example's 41 x 41), ``129``, ``257``,
+``513``; add ``--repeat 3`` for a median, ``--old REV`` for a paired comparison,
 ``--old REV --pairs 9`` for nine more solves by each, alternated, and the median of the
-pairs' ratios (on a machine whose speed drifts, the figure to quote).
-A summary table (kernels, frictionless, frictional wall and CPU, ratio, whole run,
-iterations, peak RSS) ends the output.
+pairs' ratios (on a machine whose speed drifts, the figure to quote). A summary table
+(kernels, frictionless, frictional wall and CPU, ratio, whole run, iterations, peak RSS)
+ends the output; with ``--markdown`` that table alone goes to stdout (Markdown), the
+running report to stderr.
 """
 
 import argparse
@@ -46,16 +48,19 @@ from pathlib import Path
 
 import numpy as np
 
-from _common import LAYER, machine, peak_rss_mb
+from _common import LAYER, machine, markdown_mode, markdown_table, peak_rss_mb, reporter
 
-from bem import Elastic, Grid, Layer, Loading, Paraboloid, Problem, Sphere, solve_friction
+from bem import Elastic, Grid, Layer, Loading, Paraboloid, Problem, Sphere
+from bem.frictional import solve_friction
 from bem.contact import solve_normal
-from bem.friction import Friction
+from bem.frictional import Friction
 from bem.operator import ComplianceOperator
 from bem.problem import compute_kernels
 from bem.spectral import BLOCKS
 
 G, H, R, P, MU, V, XI = 3.0e6, 0.2, 0.02, 100.0, 0.2, 1.0, 0.01
+markdown = markdown_mode() if __name__ == "__main__" else False  # imported: the importer decides
+say = reporter(markdown)
 
 
 def contact_case(spacing: float, L: float = 0.6):
@@ -99,7 +104,7 @@ def old_module(rev: str, name: str = ""):
 
 def old_solver(rev: str):
     """``solve_friction`` of the ``bem`` package at git revision ``rev`` (:func:`old_module`);
-    before the ``bem.frictional`` package (703d952 and earlier) ``bem/rolling.py``'s."""
+    in revisions before the ``bem.frictional`` package, ``bem/rolling.py``'s."""
     module = old_module(rev)
     return module.solve_friction if hasattr(module, "solve_friction") else old_module(rev, "rolling").solve_friction
 
@@ -134,7 +139,7 @@ def run(label: str, problem: Problem, friction: Friction, repeat: int, verbose: 
         def progress(msg, stamp=stamp):
             lines.append(f"{time.perf_counter() - stamp:7.2f} s  {msg}")
             if verbose:
-                print("   ", lines[-1], flush=True)
+                say("   ", lines[-1])
 
         t0, c0 = time.perf_counter(), time.process_time()
         res, _ = solver(problem, friction, kernels=kernels, energy=False, progress=progress)
@@ -147,21 +152,21 @@ def run(label: str, problem: Problem, friction: Friction, repeat: int, verbose: 
     solve_s, solve_cpu = times[len(times) // 2], cpus[len(cpus) // 2]
     r = res.record
     g = problem.grid
-    print(f"{label}: {g.nodes_x} x {g.nodes_y} nodes, a = {g.spacing_x * 1e3:.4g} mm, Nt = {g.truncation_x}, "
+    say(f"{label}: {g.nodes_x} x {g.nodes_y} nodes, a = {g.spacing_x * 1e3:.4g} mm, Nt = {g.truncation_x}, "
           f"{int(res.contact.sum())} contact nodes")
-    print(f"  kernels {kernel_s:.2f} s, frictionless solve {normal_s:.3f} s "
+    say(f"  kernels {kernel_s:.2f} s, frictionless solve {normal_s:.3f} s "
           f"({normal.record.iterations} it, {normal.record.linear_iterations} GMRES)")
-    print(f"  frictional solve {solve_s:.3f} s (median of {repeat}; {ratio:.1f} x frictionless, the median of the pairs), "
+    say(f"  frictional solve {solve_s:.3f} s (median of {repeat}; {ratio:.1f} x frictionless, the median of the pairs), "
           f"CPU {solve_cpu:.3f} s, whole run {kernel_s + solve_s:.2f} s; {r.iterations} active-set iterations, "
           f"{r.linear_solver} {r.linear_iterations} iterations")
-    print(f"  creep force -sum S_x = {-res.force_x.sum():.6g} N ({-res.force_x.sum() / (MU * res.load):.5f} mu P), "
+    say(f"  creep force -sum S_x = {-res.force_x.sum():.6g} N ({-res.force_x.sum() / (MU * res.load):.5f} mu P), "
           f"stick fraction {res.stick_fraction:.4f}, R_r = {res.rolling_resistance:.6g} N, Omega = {res.omega:.8g}")
-    print(f"  residuals gap {r.gap_residual:.1e} stick {r.stick_residual:.1e} Coulomb {r.coulomb_residual:.1e}; "
-          f"peak RSS {peak_rss_mb():.0f} MB", flush=True)
+    say(f"  residuals gap {r.gap_residual:.1e} stick {r.stick_residual:.1e} Coulomb {r.coulomb_residual:.1e}; "
+          f"peak RSS {peak_rss_mb():.0f} MB")
     coarse = [ln for ln in lines if "coarse" in ln]
     if coarse:
-        print(f"  coarse start done at {coarse[-1].split(' s')[0].strip()} s")
-    SUMMARY.append((label.split(":")[0], f"{g.nodes_x} x {g.nodes_y}", int(res.contact.sum()), kernel_s, normal_s,
+        say(f"  coarse start done at {coarse[-1].split(' s')[0].strip()} s")
+    SUMMARY.append((f"{label}, {g.nodes_x} x {g.nodes_y}", int(res.contact.sum()), kernel_s, normal_s,
                     solve_s, solve_cpu, ratio, kernel_s + solve_s, r.iterations, r.linear_iterations,
                     peak_rss_mb()))
     return {"kernel_s": kernel_s, "normal_s": normal_s, "solve_s": solve_s, "solve_cpu": solve_cpu, "result": res,
@@ -172,17 +177,22 @@ SUMMARY: list = []
 
 
 def print_summary() -> None:
-    """One row per case: the figures the issue's goals are about."""
+    """One row per case: time against CONTACT and against the frictionless solve, iterations
+    and memory (a Markdown table on stdout with ``--markdown``)."""
     if not SUMMARY:
         return
-    print("\nsummary (s; peak RSS of the process so far, kernels included)")
-    head = ("case", "grid", "contact", "kernels", "frictionless", "frictional", "CPU", "ratio", "whole run",
-            "active set", "GMRES", "peak RSS MB")
+    head = ("case", "contact nodes", "kernels (s)", "frictionless (s)", "frictional (s)", "frictional CPU (s)",
+            "frictional / frictionless", "whole run (s)", "active-set iterations", "GMRES iterations",
+            "peak RSS (MB)")
+    rows = [[case, nc, f"{ks:.2f}", f"{ns:.3f}", f"{fs:.3f}", f"{fc:.3f}", f"{ratio:.2f}", f"{whole:.2f}", it, lin,
+             f"{rss:.0f}"] for case, nc, ks, ns, fs, fc, ratio, whole, it, lin, rss in SUMMARY]
+    if markdown:
+        print(markdown_table(head, rows))
+        return
+    print("\nsummary (peak RSS of the process so far, kernels included)")
     print(" | ".join(head))
-    for row in SUMMARY:
-        case, grid, nc, ks, ns, fs, fc, ratio, whole, it, lin, rss = row
-        print(f"{case} | {grid} | {nc} | {ks:.2f} | {ns:.3f} | {fs:.3f} | {fc:.3f} | {ratio:.2f} | {whole:.2f} | "
-              f"{it} | {lin} | {rss:.0f}")
+    for row in rows:
+        print(" | ".join(str(c) for c in row))
 
 
 def paired(label, problem, friction, args):
@@ -193,10 +203,10 @@ def paired(label, problem, friction, args):
             old = run(label + f" [solver of {args.old}]", problem, friction, args.repeat, args.verbose,
                       solver=old_solver(args.old), kernels=new["kernels"])
         except Exception as exc:  # noqa: BLE001 - the old solver's failure is a result here
-            print(f"  the solver of {args.old} failed after {time.perf_counter() - t0:.1f} s: "
-                  f"{type(exc).__name__}: {exc}", flush=True)
+            say(f"  the solver of {args.old} failed after {time.perf_counter() - t0:.1f} s: "
+                  f"{type(exc).__name__}: {exc}")
             return
-        print(f"  new against {args.old}: {compare(new['result'], old['result'])}; "
+        say(f"  new against {args.old}: {compare(new['result'], old['result'])}; "
               f"solve {old['solve_s']:.2f} s -> {new['solve_s']:.2f} s ({old['solve_s'] / new['solve_s']:.1f}x), CPU "
               f"{old['solve_cpu']:.2f} s -> {new['solve_cpu']:.2f} s ({old['solve_cpu'] / new['solve_cpu']:.1f}x)",
               flush=True)
@@ -217,7 +227,7 @@ def alternate(problem, friction, old, kernels, pairs: int, rev: str) -> None:
             solver(problem, friction, kernels=kernels, energy=False)
             times[name].append(time.perf_counter() - t0)
     ratio = np.array(times["old"]) / np.array(times["new"])
-    print(f"  {pairs} alternated pairs: today {np.median(times['new']):.3f} s, {rev} {np.median(times['old']):.3f} s "
+    say(f"  {pairs} alternated pairs: today {np.median(times['new']):.3f} s, {rev} {np.median(times['old']):.3f} s "
           f"(medians); ratio {rev} / today {np.median(ratio):.3f} (median; {ratio.min():.2f}-{ratio.max():.2f})",
           flush=True)
 
@@ -230,18 +240,18 @@ if __name__ == "__main__":
                     help="section 11 grids (nodes a side; 0: the example's own 41 x 41)")
     ap.add_argument("--repeat", type=int, default=1)
     ap.add_argument("--verbose", action="store_true")
-    ap.add_argument("--period", type=float, default=0.6, help="period L (m) of the issue's case")
+    ap.add_argument("--period", type=float, default=0.6, help="period L (m) of the elastic paraboloid's layer")
     ap.add_argument("--old", metavar="REV", help="also solve with the frictional solver of this git revision")
     ap.add_argument("--pairs", type=int, default=0,
                     help="with --old: this many more solves by each, alternated, and their paired ratio")
     args = ap.parse_args()
-    print(machine(), "| load average", " ".join(f"{x:.2f}" for x in os.getloadavg()))
+    say(machine(), "| load average", " ".join(f"{x:.2f}" for x in os.getloadavg()))
     if args.case in ("contact", "all"):
         for a in args.spacing:
-            paired(f"issue 11 case (CONTACT), spacing {a * 1e3:g} mm, L = {args.period:g} m", *contact_case(a, args.period),
-                   args)
+            paired(f"elastic paraboloid, creepage {XI:g}, spacing {a * 1e3:g} mm, L = {args.period:g} m",
+                   *contact_case(a, args.period), args)
     if args.case in ("section11", "all"):
         for n in args.nodes:
-            paired("section 11 with friction", *section11_case(n or None), args)
+            paired(f"viscoelastic sphere (section 11), mu = {MU:g}", *section11_case(n or None), args)
     print_summary()
-    print("load average at the end", " ".join(f"{x:.2f}" for x in os.getloadavg()))
+    say("load average at the end", " ".join(f"{x:.2f}" for x in os.getloadavg()))

@@ -1,11 +1,13 @@
 """Timing of the axisymmetric fem_reference on the paper's thick case (section 10.1).
 
-Prints, per element size, the wall time and the contact radius error against the
-finest run (and against Jaffar's 4.559 mm for the paraboloid). Run:
-``.venv/bin/python benchmarks/fem_axisymmetric.py``.
+Prints, per indenter and element size, the wall time and the contact radius error against
+the finest run (h = 5e-5 m, nested) and against Jaffar's 4.559 mm for the paraboloid. Run:
+``python benchmarks/fem_axisymmetric.py [--markdown]``.
 """
 
 import time
+
+from _common import markdown_mode, markdown_table, reporter
 
 from fem_reference import ContactProblem, ElasticMaterial, FemSettings, Indenter, Layer, Loading, solve
 
@@ -18,13 +20,24 @@ def run(shape, h, refine=0):
 
 
 if __name__ == "__main__":
+    markdown = markdown_mode()
+    say = reporter(markdown)
+    rows = []
     for shape in ("paraboloid", "sphere"):
         ref, t_ref = run(shape, 4e-4, refine=3)
-        print(f"{shape}: reference h = 5e-5 m (nested), {ref.mesh.unknowns} unknowns, {t_ref:.1f} s, "
-              f"radius {ref.contact_radius * 1e3:.4f} mm")
+        say(f"{shape}: reference h = 5e-5 m (nested), {ref.mesh.unknowns} unknowns, {t_ref:.1f} s, "
+            f"radius {ref.contact_radius * 1e3:.4f} mm")
         for h in (4e-4, 2e-4, 1e-4, 5e-5):
             res, t = run(shape, h)
-            print(f"  h = {h:.0e} m: {res.mesh.unknowns:6d} unknowns, {t:6.2f} s, radius "
-                  f"{res.contact_radius * 1e3:.4f} mm ({res.contact_radius / ref.contact_radius - 1:+.3%}"
-                  f" vs reference, {res.contact_radius / 4.559e-3 - 1:+.3%} vs Jaffar), "
-                  f"d {res.indentation:.5e} m, p_max {res.peak_pressure:.5e} Pa")
+            jaffar = f"{res.contact_radius / 4.559e-3 - 1:+.3%}"
+            say(f"  h = {h:.0e} m: {res.mesh.unknowns:6d} unknowns, {t:6.2f} s, radius "
+                f"{res.contact_radius * 1e3:.4f} mm ({res.contact_radius / ref.contact_radius - 1:+.3%}"
+                f" vs reference, {jaffar} vs Jaffar), "
+                f"d {res.indentation:.5e} m, p_max {res.peak_pressure:.5e} Pa")
+            rows.append([f"thick layer (H = 5 mm, P = 100 N), {shape} R = 20 mm, h = {h * 1e3:g} mm",
+                         res.mesh.unknowns, f"{t:.2f}", f"{res.contact_radius * 1e3:.4f}",
+                         f"{res.contact_radius / ref.contact_radius - 1:+.3%}",
+                         jaffar if shape == "paraboloid" else ""])
+    if markdown:
+        print(markdown_table(["case", "unknowns", "wall (s)", "contact radius (mm)",
+                              "vs h = 0.05 mm nested", "vs Jaffar's 4.559 mm"], rows))

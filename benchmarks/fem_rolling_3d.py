@@ -15,7 +15,7 @@ p = ln((f1 - f2) / (f2 - f3)) / ln r, f_inf = f3 + (f3 - f2) / (r^p - 1).
 Usage::
 
     python benchmarks/fem_rolling_3d.py [--levels 4] [--first 0] [--h0 1e-3] [--g0 0.2]
-                                        [--domain] [--superlu] [--bem] [--json out.json]
+                                        [--domain] [--superlu] [--bem] [--json out.json] [--markdown]
 
 ``--domain`` adds a solve at the first level with upstream, downstream and lateral
 lengths doubled; ``--superlu`` the first level with SuperLU instead of Pardiso; ``--bem``
@@ -33,6 +33,9 @@ import subprocess
 import sys
 import time
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from _common import markdown_table, reporter  # noqa: E402
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 CASE = os.path.join(ROOT, "examples", "paper-section11-frictionless.toml")
@@ -45,10 +48,11 @@ KEYS = ("rolling_resistance", "rolling_resistance_energy", "indentation", "leadi
 
 def one(h: float, grading: float, far: float, scale_domain: float, solver: str = "auto") -> dict:
     """One solve in this process; a JSON-ready dict. ``solver``: the linear solver of
-    :mod:`fem_reference.rolling_solve` ("auto", "pardiso" or "superlu")."""
+    :mod:`fem_reference.rolling.solve` ("auto", "pardiso" or "superlu")."""
     from fem_reference import (ContactProblem, FemSettings, Indenter, Layer, Loading,
-                               ThreeParameterMaterial, rolling_solve, solve)
-    from fem_reference.rolling3d_discretization import resolve_box
+                               ThreeParameterMaterial, solve)
+    from fem_reference.rolling import solve as rolling_solve
+    from fem_reference.rolling.three_d.discretization import resolve_box
 
     rolling_solve.LINEAR_SOLVER = solver
 
@@ -101,17 +105,36 @@ def bem_figures() -> dict:
     ds/dx = x / sqrt(R^2 - x^2 - y^2)), the indentation (m) and the time (s)."""
     import numpy as np
 
-    from bem import solve_frictionless
+    from bem import solve
     from bem.case import problem_from_config, read_case
 
     t0 = time.perf_counter()
     problem, _ = problem_from_config(read_case(CASE))
-    r, _ = solve_frictionless(problem)  # the contact and the timings
+    r = solve(problem, energy=False)
     X, Y = r.grid.coordinates()
     R = 0.02
     return {"rolling_resistance": float(r.rolling_resistance),
             "horizontal_force": float(np.sum(r.force * X / np.sqrt(R * R - X * X - Y * Y))),
             "indentation": float(r.indentation), "wall": time.perf_counter() - t0}
+
+
+def _table_head() -> list:
+    return ["case", "h (mm)", "unknowns", "candidate nodes", "wall (s)", "peak RSS (GB)", "R_r (N)", "D/V (N)",
+            "indentation (mm)", "edges on y = 0 (mm)", "energy balance"]
+
+
+def _table_row(row: dict) -> list:
+    return [f"section 11 sphere, frictionless, 3D FEM level {row['level']}", f"{row['h'] * 1e3:.3f}",
+            row["unknowns"], row["contact_nodes"], f"{row['wall']:.0f}", f"{row['peak_memory'] / 1e9:.1f}",
+            f"{row['rolling_resistance']:.5f}", f"{row['rolling_resistance_energy']:.5f}",
+            f"{row['indentation'] * 1e3:.5f}", f"{row['trailing_edge'] * 1e3:.4f} / {row['leading_edge'] * 1e3:.4f}",
+            f"{row['energy_balance']:+.2%}"]
+
+
+def _bem_row(b: dict) -> list:
+    return ["the BEM on the paper's grid (41 x 41)", "", "", "", f"{b['wall']:.0f}", "",
+            f"{b['rolling_resistance']:.5f}", f"{b['horizontal_force']:.5f} (sum F ds/dx)",
+            f"{b['indentation'] * 1e3:.5f}", "", ""]
 
 
 def main(argv=None):
@@ -125,18 +148,20 @@ def main(argv=None):
     ap.add_argument("--json", default=None)
     ap.add_argument("--superlu", action="store_true",
                     help="also solve the first level with SuperLU (time, fill, memory)")
+    ap.add_argument("--markdown", action="store_true", help="print the levels table alone, in Markdown")
     ap.add_argument("--one", nargs=5, help=argparse.SUPPRESS)
     args = ap.parse_args(argv)
     if args.one:
         print(json.dumps(one(*map(float, args.one[:4]), solver=args.one[4])))
         return 0
+    say = reporter(args.markdown)
     rows = []
     for k in range(args.first, args.first + args.levels):
         s = RATIO ** k
         row = _child(args.h0 / s, args.g0 / s, H / s, 1.0)
         row["level"] = k
         rows.append(row)
-        print(f"level {k}: h = {row['h'] * 1e3:.3f} mm, {row['unknowns']} unknowns, "
+        say(f"level {k}: h = {row['h'] * 1e3:.3f} mm, {row['unknowns']} unknowns, "
               f"{row['contact_nodes']} nodes: R_r {row['rolling_resistance']:.5f} N, D/V "
               f"{row['rolling_resistance_energy']:.5f} N, d {row['indentation'] * 1e3:.5f} mm, "
               f"edges [{row['trailing_edge'] * 1e3:.4f}, {row['leading_edge'] * 1e3:.4f}] mm, "
@@ -149,14 +174,14 @@ def main(argv=None):
             p, f = richardson(*(row[key] for row in rows[-3:]))
             rich[key] = {"order": p, "extrapolated": f,
                          "error_estimate_finest": (rows[-1][key] - f) if f == f else float("nan")}
-            print(f"Richardson {key}: order {p:.2f}, extrapolated {f:.6g}", flush=True)
+            say(f"Richardson {key}: order {p:.2f}, extrapolated {f:.6g}", flush=True)
         out["richardson"] = rich
     if args.domain:
         s = RATIO ** args.first
         for scale in (2.0,):  # against the first level (the same mesh sizes)
             row = _child(args.h0 / s, args.g0 / s, H / s, scale)
             out.setdefault("domain", []).append(row)
-            print(f"domain x{scale:g}: R_r {row['rolling_resistance']:.6f} N, D/V "
+            say(f"domain x{scale:g}: R_r {row['rolling_resistance']:.6f} N, D/V "
                   f"{row['rolling_resistance_energy']:.6f} N, d {row['indentation'] * 1e3:.6f} mm, "
                   f"edges [{row['trailing_edge'] * 1e3:.5f}, {row['leading_edge'] * 1e3:.5f}] mm, "
                   f"{row['unknowns']} unknowns, {row['wall']:.0f} s", flush=True)
@@ -165,20 +190,23 @@ def main(argv=None):
         row = _child(args.h0 / s, args.g0 / s, H / s, 1.0, "superlu")
         out["superlu"] = row
         t = row["times"]
-        print(f"superlu at level {args.first}: R_r {row['rolling_resistance']:.6f} N, "
+        say(f"superlu at level {args.first}: R_r {row['rolling_resistance']:.6f} N, "
               f"factorization {t['factorization']:.1f} s ({row['factor_nonzeros']} nonzeros), "
               f"compliance {t['compliance']:.1f} s, total {row['wall']:.0f} s, peak "
               f"{row['peak_memory'] / 2 ** 20:.0f} MiB", flush=True)
     if args.bem:
         b = out["bem"] = bem_figures()
-        print(f"bem: R_r {b['rolling_resistance']:.5f} N, sum F ds/dx {b['horizontal_force']:.5f} N "
+        say(f"bem: R_r {b['rolling_resistance']:.5f} N, sum F ds/dx {b['horizontal_force']:.5f} N "
               f"(the FEM's D/V), indentation {b['indentation'] * 1e3:.5f} mm ({b['wall']:.0f} s)",
               flush=True)
         if rows:
             f = rows[-1]
-            print(f"finest FEM against the BEM: R_r {f['rolling_resistance'] / b['rolling_resistance'] - 1:+.3%}, "
+            say(f"finest FEM against the BEM: R_r {f['rolling_resistance'] / b['rolling_resistance'] - 1:+.3%}, "
                   f"D/V {f['rolling_resistance_energy'] / b['horizontal_force'] - 1:+.3%}, indentation "
                   f"{f['indentation'] / b['indentation'] - 1:+.3%}", flush=True)
+    if args.markdown:
+        print(markdown_table(_table_head(), [_table_row(row) for row in rows]
+                             + ([_bem_row(out["bem"])] if "bem" in out else [])))
     if args.json:
         with open(args.json, "w") as fh:
             json.dump(out, fh, indent=1)

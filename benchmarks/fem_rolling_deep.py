@@ -1,5 +1,5 @@
 """fem_reference's plane-strain steady rolling on a deep layer against Hunter's (1961)
-half-space solution (issue 10).
+half-space solution.
 
 The case is verification/cases/rolling-halfspace-2d.toml: a rigid cylinder R = 20 mm,
 P = 1000 N/m, on the paper's three-parameter solid (G0 = 3 MPa, tau = 0.25 s, f = 1),
@@ -22,6 +22,7 @@ the observed order of the depth convergence and the Richardson limit.
 ``... --lengths``: the upstream and downstream lengths halved and doubled.
 ``... --inertia``: an elastic layer at 0.6 of the shear-wave speed against 2D Hertz with
 the moving modulus, and the same-width contact at rest on the same mesh.
+``--markdown``: the tables of ``--hunter`` and ``--counts`` alone on stdout (benchmarks/collect.py).
 """
 
 import argparse
@@ -31,7 +32,8 @@ import time
 import numpy as np
 
 import fem_reference as fr
-from fem_reference import mesh_plane
+from _common import markdown_table, reporter
+from fem_reference.mesh import plane_strain_strip as mesh_plane
 
 G0, TAU, F = 3.0e6, 0.25, 1.0
 R, P = 0.02, 1000.0
@@ -42,6 +44,8 @@ SCALED = (0.01, 0.03, 0.1, 0.3, 1.0, 3.0, 10.0, 30.0, 100.0)  # the case's V tau
 #: the time), the other [fem] defaults
 DEPTH, SIZE, GRADING = 1000.0, 30.0, 0.5
 MATERIAL = fr.ThreeParameterMaterial(G0, TAU, F)
+say = print  # the running report (stderr with --markdown)
+TABLES = []  # the Markdown tables of the modes run
 
 
 def hunter(scaled):
@@ -82,31 +86,41 @@ def run_hunter(depth, size, grading):
     refs = [hunter(s) for s in SCALED]
     peak = max(abs(r.rolling_resistance) for r in refs)
     fem = {"grading": grading}
-    print(f"H = {depth:g} b0, h = b0/{size:g}, grading {grading:g}; Hunter's peak R_r {peak:.5f} N/m")
-    print(f"{'V tau/b0':>8s} {'unknowns':>8s} {'fill':>6s} {'s':>6s} {'R_r':>9s} {'Hunter':>9s} "
+    say(f"H = {depth:g} b0, h = b0/{size:g}, grading {grading:g}; Hunter's peak R_r {peak:.5f} N/m")
+    say(f"{'V tau/b0':>8s} {'unknowns':>8s} {'fill':>6s} {'s':>6s} {'R_r':>9s} {'Hunter':>9s} "
           f"{'dR_r/pk':>8s} {'dD/V/pk':>8s} {'lead/L':>8s} {'trail/L':>8s} {'p rms':>7s} {'e.bal.':>7s}")
     worst = np.zeros(5)
     total = 0.0
+    rows = []
     for s, ref in zip(SCALED, refs):
         res, t = solve(s, depth, size, **fem)
         total += t
         e = errors(res, ref, peak) + (pressure_rms_interior(res, ref),)
         worst = np.maximum(worst, np.abs(e))
-        print(f"{s:8g} {res.mesh.unknowns:8d} {res.solver.factor_nonzeros / 1e6:5.1f}M {t:6.1f} "
+        rows.append([f"V tau / b0 = {s:g}", res.mesh.unknowns, f"{t:.1f}", f"{e[0]:+.3%}", f"{e[1]:+.3%}",
+                     f"{e[2]:+.3%} / {e[3]:+.3%}", f"{e[4]:.3%}", f"{res.energy_balance:+.2%}"])
+        say(f"{s:8g} {res.mesh.unknowns:8d} {res.solver.factor_nonzeros / 1e6:5.1f}M {t:6.1f} "
               f"{res.rolling_resistance:9.5f} {ref.rolling_resistance:9.5f} {e[0]:+8.3%} {e[1]:+8.3%} "
               f"{e[2]:+8.3%} {e[3]:+8.3%} {e[4]:7.3%} {res.energy_balance:+7.2%}", flush=True)
-    print(f"worst: R_r {worst[0]:.3%} of the peak (D/V {worst[1]:.3%}), leading edge {worst[2]:.3%}, "
+    say(f"worst: R_r {worst[0]:.3%} of the peak (D/V {worst[1]:.3%}), leading edge {worst[2]:.3%}, "
           f"trailing {worst[3]:.3%} of the contact length, interior pressure RMS {worst[4]:.3%} of the "
           f"peak; {total:.0f} s in all "
           f"({total / len(SCALED):.1f} s per speed)")
+    rows.append(["**worst**, all nine speeds", "", f"{total:.0f} (all)", f"{worst[0]:.3%}", f"{worst[1]:.3%}",
+                 f"{worst[2]:.3%} / {worst[3]:.3%}", f"{worst[4]:.3%}", ""])
+    TABLES.append(markdown_table(
+        [f"rolling-halfspace-2d, H = {depth:g} b0, h = b0 / {size:g}, grading {grading:g}", "unknowns", "wall (s)",
+         "R_r - Hunter (of the peak)", "D/V - Hunter (of the peak)", "leading / trailing edge (of L)",
+         "interior pressure RMS (of the peak)", "energy balance"], rows))
 
 
 def run_counts():
-    from fem_reference.plane_discretization import resolve_plane
-    from fem_reference.rolling_system import build_rolling_system
+    from fem_reference.rolling.plane_strain.discretization import resolve_plane
+    from fem_reference.rolling.plane_strain.system import build_rolling_system
     import dataclasses
 
-    print(f"{'H/b0':>6s} {'tensor unknowns':>16s} {'default unknowns':>17s} {'ratio':>6s}")
+    say(f"{'H/b0':>6s} {'tensor unknowns':>16s} {'default unknowns':>17s} {'ratio':>6s}")
+    rows = []
     for depth in (1, 4, 10, 40, 160, 640, 2560):
         problem = fr.ContactProblem(fr.Layer(depth * B0), MATERIAL, fr.Indenter("line", R),
                                     fr.Loading(load=P, speed=B0 / TAU),
@@ -120,7 +134,10 @@ def run_counts():
                 disc, band=min(0.5 * disc.contact_zone, depth * B0))).n_unknowns
         finally:
             mesh_plane.ASPECT = saved
-        print(f"{depth:6g} {old:16d} {new:17d} {new / old:6.2f}", flush=True)
+        say(f"{depth:6g} {old:16d} {new:17d} {new / old:6.2f}", flush=True)
+        rows.append([f"H = {depth:g} b0, h = b0 / {SIZE:g}", old, new, f"{new / old:.2f}"])
+    TABLES.append(markdown_table(["layer (no solve)", "unknowns, tensor mesh (band Z/2)", "unknowns, default mesh",
+                                  "ratio"], rows))
 
 
 def richardson(h_values, values):
@@ -142,7 +159,7 @@ def run_depth(scaled):
         rows.append((res.rolling_resistance, res.rolling_resistance_energy, res.leading_edge,
                      res.trailing_edge, res.indentation))
         e = errors(res, ref, peak)
-        print(f"H = {depth:4g} b0: {res.mesh.unknowns:6d} unknowns {t:6.1f} s  R_r {rows[-1][0]:.5f}  "
+        say(f"H = {depth:4g} b0: {res.mesh.unknowns:6d} unknowns {t:6.1f} s  R_r {rows[-1][0]:.5f}  "
               f"D/V {rows[-1][1]:.5f} N/m (Hunter {ref.rolling_resistance:.5f}: {e[0]:+.3%}, {e[1]:+.3%} of "
               f"the peak)  edges {e[3]:+.3%} / {e[2]:+.3%} of L  indentation {rows[-1][4] * 1e6:.3f} um",
               flush=True)
@@ -151,7 +168,7 @@ def run_depth(scaled):
         diffs = np.diff(vals)
         p, lim = richardson(depths, vals)
         tail = f"order {p:.2f}, limit {lim:.6g}" if p is not None else "not monotone"
-        print(f"{name}: successive changes {', '.join(f'{d:+.3g}' for d in diffs)}; {tail}")
+        say(f"{name}: successive changes {', '.join(f'{d:+.3g}' for d in diffs)}; {tail}")
 
 
 def run_mesh():
@@ -160,7 +177,7 @@ def run_mesh():
     for size in (20, 30, 45, 60):
         res, t = solve(1.0, DEPTH, size)
         e = errors(res, ref, peak)
-        print(f"h = b0/{size}: {res.mesh.unknowns} unknowns {t:.1f} s  R_r {e[0]:+.3%} D/V {e[1]:+.3%} of the "
+        say(f"h = b0/{size}: {res.mesh.unknowns} unknowns {t:.1f} s  R_r {e[0]:+.3%} D/V {e[1]:+.3%} of the "
               f"peak, edges {e[3]:+.3%} / {e[2]:+.3%} of L, energy balance {res.energy_balance:+.3%}",
               flush=True)
 
@@ -176,7 +193,7 @@ def run_lengths():
             res, t = solve(scaled, grading=GRADING, upstream=k * base.mesh.upstream,
                            downstream=k * base.mesh.downstream)
             L = base.contact_length
-            print(f"V tau/b0 = {scaled:g}, lengths x {k:g} ({res.mesh.upstream / H:.1f} H, "
+            say(f"V tau/b0 = {scaled:g}, lengths x {k:g} ({res.mesh.upstream / H:.1f} H, "
                   f"{res.mesh.downstream / H:.1f} H): R_r {(res.rolling_resistance - base.rolling_resistance) / peak:+.2e} "
                   f"of the peak, edges {(res.trailing_edge - base.trailing_edge) / L:+.1e} / "
                   f"{(res.leading_edge - base.leading_edge) / L:+.1e} of L, {res.mesh.unknowns} unknowns "
@@ -194,7 +211,7 @@ def run_inertia():
             fem = dict(contact_zone=1.5 * B0)
             moving, _ = solve(0, depth, size, elastic, rho, speed=M * math.sqrt(G0 / rho), **fem)
             rest, _ = solve(0, depth, size, fr.ElasticMaterial(G0 * g), **fem)
-            print(f"h = b0/{size}, H = {depth} b0: half-width at 0.6 c_s {moving.contact_length / 2 / b - 1:+.3%} "
+            say(f"h = b0/{size}, H = {depth} b0: half-width at 0.6 c_s {moving.contact_length / 2 / b - 1:+.3%} "
                   f"from Hertz with G_eff = {g:.4f} G; at rest with G_eff on the same mesh "
                   f"{rest.contact_length / 2 / b - 1:+.3%}; peak pressures {moving.peak_pressure / rest.peak_pressure - 1:+.2e} "
                   f"apart", flush=True)
@@ -211,7 +228,10 @@ if __name__ == "__main__":
     ap.add_argument("--H", type=float, default=DEPTH, help="H / b0 of --hunter")
     ap.add_argument("--size", type=float, default=SIZE, help="b0 / h of --hunter")
     ap.add_argument("--grading", type=float, default=GRADING, help="[fem] grading of --hunter")
+    ap.add_argument("--markdown", action="store_true",
+                    help="print the tables of --hunter and --counts alone, in Markdown")
     a = ap.parse_args()
+    say = reporter(a.markdown)
     if a.counts:
         run_counts()
     if a.depth is not None:
@@ -224,3 +244,5 @@ if __name__ == "__main__":
         run_lengths()
     if a.hunter or not (a.counts or a.depth is not None or a.mesh or a.inertia or a.lengths):
         run_hunter(a.H, a.size, a.grading)
+    if a.markdown:
+        print("\n\n".join(TABLES))

@@ -1,7 +1,7 @@
-"""The paper's parametric studies on Dask (issue 12): figures 7-10 with friction, and the
+"""The paper's parametric studies on Dask: figures 7-10 with friction, and the
 speed-up from one to two workers.
 
-    ../.venv/bin/python sweeps_paper.py all [--workers 2]      # every figure and table, fresh cache
+    ../.venv/bin/python sweeps_paper.py all [--workers 2] [--markdown]   # every figure and table, fresh cache
     ../.venv/bin/python sweeps_paper.py compare                # the paper's findings against them
     ../.venv/bin/python sweeps_paper.py speedup FILE
 
@@ -29,6 +29,9 @@ sys.path.insert(0, str(ROOT))
 
 from sweeps import read_sweep, run_sweep, write_report  # noqa: E402
 
+sys.path.insert(0, str(HERE))
+from _common import markdown_table, reporter  # noqa: E402
+
 OUT = ROOT / "out" / "bench-sweeps"
 FILES = ["fig7a-load-H5", "fig7b-load-H30", "fig8a-thickness-P50", "fig8b-thickness-P125",
          "fig9a-friction-share-P50", "fig9b-friction-share-P125", "fig10a-speed-H1", "fig10b-speed-H30",
@@ -43,9 +46,20 @@ def _line(name, r, wall):
             f"(energy {share(r.energy_seconds)})  overhead {share(max(0.0, work - r.kernel_seconds - r.solve_seconds - r.energy_seconds))}")
 
 
-def run_all(workers: int) -> None:
+def _shares(r, wall, workers) -> list:
+    work = workers * wall
+    if not work:
+        return ["-"] * 4
+    other = max(0.0, work - r["kernel"] - r["solve"] - r["energy"])
+    return [f"{100 * v / work:.1f}" for v in (r["kernel"], r["solve"], r["energy"], other)]
+
+
+def run_all(workers: int, markdown: bool = False) -> None:
+    """Every sweep file in one fresh cache; with ``markdown`` the table alone on stdout."""
     from sweeps import connect
 
+    say = reporter(markdown)
+    rows = []
     cache = OUT / "cache"
     shutil.rmtree(cache, ignore_errors=True)
     totals = {"wall": 0.0, "kernel": 0.0, "solve": 0.0, "energy": 0.0, "points": 0, "kernels": 0}
@@ -53,7 +67,7 @@ def run_all(workers: int) -> None:
     t0 = time.perf_counter()
     client = connect(workers=workers)
     startup = time.perf_counter() - t0
-    print(f"local cluster of {workers} workers up in {startup:.1f} s", flush=True)
+    say(f"local cluster of {workers} workers up in {startup:.1f} s")
     try:
         for name in FILES:
             sweep = read_sweep(ROOT / "examples" / "sweeps" / f"{name}.toml")
@@ -64,7 +78,10 @@ def run_all(workers: int) -> None:
             r.workers = workers
             wall = time.perf_counter() - t
             write_report(sweep, r.rows, out)
-            print(_line(name, r, wall), flush=True)
+            say(_line(name, r, wall))
+            rows.append([name, f"{r.computed} ({r.resumed} cached)", r.kernels_formed, f"{wall:.1f}"]
+                        + _shares({"kernel": r.kernel_seconds, "solve": r.solve_seconds,
+                                   "energy": r.energy_seconds}, wall, workers))
             totals["wall"] += wall
             totals["kernel"] += r.kernel_seconds
             totals["solve"] += r.solve_seconds
@@ -79,10 +96,16 @@ def run_all(workers: int) -> None:
         client.cluster.close() if getattr(client, "cluster", None) else None
     work = workers * totals["wall"]
     other = work - totals["kernel"] - totals["solve"] - totals["energy"]
-    print(f"TOTAL {totals['wall']:.1f} s wall on {workers} workers (+{startup:.1f} s cluster start), "
+    say(f"TOTAL {totals['wall']:.1f} s wall on {workers} workers (+{startup:.1f} s cluster start), "
           f"{totals['points']} points solved, {totals['kernels']} kernel sets; worker time: kernels "
           f"{100 * totals['kernel'] / work:.1f} %, solves {100 * totals['solve'] / work:.1f} %, energy "
           f"{100 * totals['energy'] / work:.1f} %, overhead and idle {100 * other / work:.1f} %")
+    if markdown:
+        rows.append([f"**all** (+{startup:.1f} s cluster start)", totals["points"], totals["kernels"],
+                     f"{totals['wall']:.1f}"] + _shares(totals, totals["wall"], workers))
+        print(markdown_table([f"sweep (examples/sweeps/, {workers} workers)", "points solved", "kernel sets",
+                              "wall (s)", "kernels (% of worker time)", "solves (%)", "energy figures (%)",
+                              "overhead and idle (%)"], rows))
     (OUT / "all.json").write_text(json.dumps({"workers": workers, "startup_s": startup, "totals": totals,
                                               "sweeps": results}, indent=2))
 
@@ -175,13 +198,14 @@ def main() -> None:
     sub = ap.add_subparsers(dest="what", required=True)
     a = sub.add_parser("all")
     a.add_argument("--workers", type=int, default=2)
+    a.add_argument("--markdown", action="store_true", help="print the table alone, in Markdown")
     s = sub.add_parser("speedup")
     s.add_argument("file")
     sub.add_parser("compare")
     args = ap.parse_args()
     OUT.mkdir(parents=True, exist_ok=True)
     if args.what == "all":
-        run_all(args.workers)
+        run_all(args.workers, args.markdown)
     elif args.what == "compare":
         compare()
     else:

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from .schema import RULES, SCHEMA, TOOLS, Key
+from .schema import RULES, SCHEMA, TOOLS, Key, readers
 
 __all__ = ["schema_markdown", "update_markdown", "BEGIN", "END"]
 
@@ -30,7 +30,7 @@ def _type(key: Key) -> str:
 
 def _rows(keys, prefix: str = "") -> list[str]:
     return [f"| {prefix}`{k.name}` | {_type(k)} | {k.unit} | {_default(k)} | "
-            f"{', '.join(k.readers)} | {k.doc} |" for k in keys]
+            f"{', '.join(readers(k))} | {k.doc} |" for k in keys]
 
 
 def schema_markdown() -> str:

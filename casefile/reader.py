@@ -8,118 +8,40 @@ given with ``--set`` resolve against the working folder (where the command was t
 from __future__ import annotations
 
 import copy
-import difflib
-import math
 import os
 import tomllib
 from pathlib import Path
 from typing import Iterable
 
-from .schema import RULES, SCHEMA, TOOLS, Key, Section, section
+from .schema import SCHEMA, TOOLS, Section, readers, section
+from .validation import InputError, check_table, check_value, show, unknown
 
 __all__ = ["CaseFileError", "read", "validate", "parse_override", "apply_overrides", "check_output"]
 
 
-class CaseFileError(ValueError):
-    """A case file, or an override of it, that breaks the schema."""
-
-
-def _show(value) -> str:
-    """A value as TOML writes it, with its type when that is the point."""
-    if isinstance(value, bool):
-        return f"{str(value).lower()} (a boolean)"
-    if isinstance(value, str):
-        return f"{value!r} (a string)"
-    if isinstance(value, dict):
-        return "a table"
-    if isinstance(value, list):
-        return f"{value!r} (a list)"
-    return repr(value)
-
-
-def _hint(name: str, known: Iterable[str]) -> str:
-    close = difflib.get_close_matches(name, list(known), n=1, cutoff=0.6)
-    return f" (did you mean {close[0]}?)" if close else ""
-
-
-def _is_number(value) -> bool:
-    return isinstance(value, (int, float)) and not isinstance(value, bool)
-
-
-def _check_value(where: str, key: Key, value, folder: Path):
-    """``value`` checked against ``key``; returns it (paths resolved to absolute ones)."""
-    unit = "" if key.unit == "-" else f" ({key.unit})"
-    if key.kind in ("number", "integer"):
-        wanted = "an integer" if key.kind == "integer" else "a number"
-        if not _is_number(value) or (key.kind == "integer" and not isinstance(value, int)):
-            raise CaseFileError(f"{where} must be {wanted}{unit}, got {_show(value)}")
-        if not math.isfinite(value):
-            raise CaseFileError(f"{where} must be finite{unit}, got {value!r}")
-        _check_rule(where, key, value)
-        return value
-    if key.kind == "numbers":
-        if not isinstance(value, list) or not value or not all(_is_number(v) for v in value):
-            raise CaseFileError(f"{where} must be a non-empty list of numbers{unit}, got {_show(value)}")
-        for v in value:
-            if not math.isfinite(v):
-                raise CaseFileError(f"{where} must hold finite numbers{unit}, got {v!r}")
-            _check_rule(where, key, v)
-        return value
-    if not isinstance(value, str) or (key.kind == "path" and not value.strip()):
-        raise CaseFileError(f"{where} must be a {'path' if key.kind == 'path' else 'string'}, got {_show(value)}")
-    if key.choices and value not in key.choices:
-        options = ", ".join(f'"{c}"' for c in key.choices)
-        raise CaseFileError(f"{where} must be one of {options}, got {value!r}{_hint(value, key.choices)}")
-    if key.kind == "path":
-        path = (folder / value).resolve()
-        if not path.exists():
-            raise CaseFileError(f"{where}: file {str(path)!r} not found (paths in a case file are relative "
-                                "to its folder)")
-        if not path.is_file():
-            raise CaseFileError(f"{where}: {str(path)!r} is a folder, not a file")
-        return str(path)
-    return value
-
-
-def _check_rule(where: str, key: Key, value) -> None:
-    if (key.rule == ">0" and not value > 0) or (key.rule == ">=0" and not value >= 0):
-        unit = "" if key.unit == "-" else f" {key.unit}"
-        raise CaseFileError(f"{where} must be {RULES[key.rule]}{unit}, got {value!r}")
+class CaseFileError(InputError):
+    """A case file, an override of it, or an output path that breaks the schema."""
 
 
 def _check_section(source: str, spec: Section, table: dict, folder: Path) -> dict:
-    out = dict(table)
+    where = f"{source} [{spec.name}]"
     variant = None
     if spec.selector is not None:
         sel = spec.key(spec.selector)
         chosen = table.get(spec.selector, sel.default)
         if chosen is None:
-            raise CaseFileError(f"{source}: [{spec.name}] needs {spec.selector} (one of "
-                                f"{', '.join(spec.variants)})")
-        variant = _check_value(f"{source}: [{spec.name}] {spec.selector}", sel, chosen, folder)
-        out[spec.selector] = variant  # a default selector is written out, so every reader sees it
-    known = [k.name for k in spec.keys] + (
-        [k.name for k in spec.variants[variant].keys] if variant else [])
-    for name, value in table.items():
-        key = spec.key(name, variant)
-        where = f"{source}: [{spec.name}] {name}"
-        if key is None:
-            more = f" for {spec.selector} = \"{variant}\"" if variant else ""
-            elsewhere = "" if not spec.all_keys(name) else (
-                f"; {name} belongs to another {spec.selector}")
-            raise CaseFileError(f"{source}: unknown key [{spec.name}] {name}{more}{elsewhere}; known keys: "
-                                f"{', '.join(known)}{_hint(name, known)}")
-        out[name] = _check_value(where, key, value, folder)
+            raise CaseFileError(f"{where} needs {spec.selector} (one of {', '.join(spec.variants)})")
+        variant = check_value(f"{where} {spec.selector}", sel, chosen, folder, CaseFileError)
+    context = ""
+    if variant:
+        context = f' for {spec.selector} = "{variant}"'
+        stray = next((name for name in table if spec.key(name, variant) is None), None)
+        if stray is not None and spec.all_keys(stray):
+            context += f"; {stray} belongs to another {spec.selector}"
     keys = spec.keys + (spec.variants[variant].keys if variant else ())
-    for key in keys:
-        if key.required and key.name not in table and key.default is None:
-            unit = "" if key.unit == "-" else f" ({key.unit})"
-            raise CaseFileError(f"{source}: [{spec.name}] needs {key.name}{unit}: {key.doc}")
-    for group in spec.one_of:
-        given = [k for k in group if k in table]
-        if len(given) != 1:
-            raise CaseFileError(f"{source}: [{spec.name}] needs exactly one of {' and '.join(group)}, "
-                                f"got {', '.join(given) if given else 'neither'}")
+    out = check_table(where, table, keys, folder=folder, context=context, one_of=spec.one_of, error=CaseFileError)
+    if variant:
+        out[spec.selector] = variant  # a default selector is written out, so every reader sees it
     return out
 
 
@@ -147,7 +69,7 @@ def _for_tool(source: str, data: dict, tool: str) -> dict:
                                     f"\"{variant}\"; it reads {', '.join(supported)}")
         for name in table:
             key = spec.key(name, table.get(spec.selector) if spec.selector else None)
-            if tool not in key.readers:
+            if tool not in readers(key):
                 raise CaseFileError(f"{source}: {command} does not read [{spec.name}] {name}; remove it")
         out[spec.name] = table
     return out
@@ -177,16 +99,14 @@ def validate(data: dict, tool: str | None = None, *, source: str = "case", folde
     if tool is not None and tool not in TOOLS:
         raise ValueError(f"tool must be one of {', '.join(TOOLS)}, got {tool!r}")
     if not isinstance(data, dict):
-        raise CaseFileError(f"{source}: a case is a set of [sections], got {_show(data)}")
-    known = [s.name for s in SCHEMA]
+        raise CaseFileError(f"{source}: a case is a set of [sections], got {show(data)}")
     out = {}
     for name, table in data.items():
         spec = section(name)
         if spec is None:
-            raise CaseFileError(f"{source}: unknown section [{name}]; known sections: {', '.join(known)}"
-                                f"{_hint(name, known)}")
+            raise unknown(source, name, [s.name for s in SCHEMA], what="section", error=CaseFileError)
         if not isinstance(table, dict):
-            raise CaseFileError(f"{source}: [{name}] must be a table of keys, got {_show(table)}")
+            raise CaseFileError(f"{source} [{name}] must be a table of keys, got {show(table)}")
         out[name] = _check_section(source, spec, table, Path(folder))
     return copy.deepcopy(_for_tool(source, out, tool) if tool else out)
 

@@ -12,43 +12,14 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-__all__ = ["KINDS", "TOOLS", "RULES", "Key", "Variant", "Section", "SCHEMA", "section"]
+from .validation import KINDS, RULES, Key
 
-#: value kinds: a finite number (int or float, never a boolean), an integer, a string,
-#: a non-empty list of numbers, a path to a file (relative to the case file's folder)
-KINDS = ("number", "integer", "string", "numbers", "path")
+__all__ = ["KINDS", "TOOLS", "RULES", "BOTH", "Key", "Variant", "Section", "SCHEMA", "section", "readers"]
+
 #: the tools that read case files, and their command names
 TOOLS = {"bem": "bem solve", "fem": "fem-reference solve"}
+#: the readers of a key, variant or section that names none
 BOTH = ("bem", "fem")
-#: range rules, as the messages and the docs write them
-RULES = {"": "", ">0": "> 0", ">=0": ">= 0"}
-
-
-@dataclass(frozen=True)
-class Key:
-    """One key of a section.
-
-    ``rule`` is ``">0"``, ``">=0"`` or empty (checked on numbers, integers and every
-    element of a list); ``default`` is the value a missing key takes (``None``: no value,
-    the reader decides, as ``default_doc`` says).
-    """
-
-    name: str
-    kind: str
-    unit: str
-    doc: str
-    readers: tuple = BOTH
-    required: bool = False
-    default: object = None
-    default_doc: str = ""
-    rule: str = ""
-    choices: tuple = ()
-
-    def __post_init__(self) -> None:
-        if self.kind not in KINDS:
-            raise ValueError(f"key {self.name}: kind must be one of {KINDS}, got {self.kind!r}")
-        if self.rule not in RULES:
-            raise ValueError(f"key {self.name}: rule must be '', '>0' or '>=0', got {self.rule!r}")
 
 
 @dataclass(frozen=True)
@@ -254,3 +225,9 @@ SCHEMA: tuple = (
 def section(name: str) -> Section | None:
     """The section called ``name``, or ``None``."""
     return next((s for s in SCHEMA if s.name == name), None)
+
+
+def readers(key: Key) -> tuple:
+    """The tools that read ``key``: those it names, else both (its section and variant
+    say which of them read the table at all)."""
+    return key.readers or BOTH

@@ -1,7 +1,7 @@
 """Exactly incompressible finite-element reference for frictionless contact on a layer
 bonded to a rigid base: stationary elastic indentation (axisymmetric or 3D), and steady
 rolling on an elastic or viscoelastic (Prony, three-parameter) layer in the frame of the
-indenter (one driver, :mod:`.rolling_solve`): of a rigid cylinder in plane strain
+indenter (one driver, :mod:`.rolling.solve`): of a rigid cylinder in plane strain
 (docs/derivations.md section 7) and of a rigid sphere in 3D on the half layer y >= 0
 (section 9; ``fem.model = "3d"`` with ``loading.speed`` > 0).
 
@@ -13,6 +13,15 @@ refined candidate zone of the top surface (mortar coupling with u_z: a
 consistent traction, no corner/mid-side oscillation of P2 nodal reactions); the
 contact problem, condensed on that zone, is solved by an active-set method with
 cycle detection (:mod:`.contact`). Load or displacement control. SI units.
+
+The package in rooms: :mod:`.mesh` (one module per mesh), :mod:`.stationary` (the model
+at rest), :mod:`.rolling` (steady rolling: :mod:`.rolling.plane_strain` and
+:mod:`.rolling.three_d`, one driver), and the modules they share: the inputs
+(:mod:`.problem`, :mod:`.materials`, :mod:`.case`), :mod:`.errors`, the linear solvers
+(:mod:`.linsolve`), the contact solver (:mod:`.contact`), the contact-edge fit
+(:mod:`.edge_fit`), the shared weak forms (:mod:`.shared_forms`), the a-priori sizes
+(:mod:`.sizing`), the solver record (:mod:`.record`), the entry point :func:`solve`
+(:mod:`.driver`), :mod:`.output` and :mod:`.cli`.
 
 Python use::
 
@@ -69,7 +78,7 @@ line, ``"three_parameter"`` or ``"prony"``), ``[indenter] shape`` ("sphere" |
 =================  ==========================================================
 
 a_est (m) is the smaller of the Hertz radius and the thin-layer asymptote
-(:mod:`.discretization`). Every failure raises a subclass of
+(:mod:`.sizing`). Every failure raises a subclass of
 :class:`FemReferenceError`.
 """
 
@@ -77,10 +86,9 @@ from .errors import (ContactNotConvergedError, ContactZoneError, FemReferenceErr
                      InputError, LinearSolverError, MeshError, MissingDependencyError)
 from .materials import ElasticMaterial, PronyMaterial, ThreeParameterMaterial
 from .problem import ContactProblem, FemSettings, Indenter, Layer, Loading
-from .result import ContactResult
-from .rolling3d_result import SphereRollingResult
-from .rolling_result import RollingResult
-from .solve import solve
+from .rolling import RollingResult, SphereRollingResult
+from .driver import solve
+from .stationary import ContactResult
 
 __all__ = [
     "solve", "ContactProblem", "Layer", "ElasticMaterial", "PronyMaterial",

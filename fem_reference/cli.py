@@ -60,8 +60,8 @@ def _parser() -> argparse.ArgumentParser:
 def main(argv: Optional[List[str]] = None) -> int:
     args = _parser().parse_args(argv)
     from .output import plot_result, write_vtu
-    from .rolling_result import RollingResult
-    from .solve import solve
+    from .rolling.result import RollingResult
+    from .driver import solve
 
     def progress(line: str) -> None:
         print(f"fem-reference: {line}", file=sys.stderr, flush=True)
@@ -70,7 +70,7 @@ def main(argv: Optional[List[str]] = None) -> int:
         plot = casefile.check_output(args.plot, (".png", ".pdf", ".svg"), "--plot")
         vtu = casefile.check_output(args.vtu, (".vtu",), "--vtu")
         problem = load_case(args.case, args.set)
-    except (InputError, casefile.CaseFileError) as exc:
+    except (InputError, casefile.InputError) as exc:
         print(f"fem-reference: error: {exc}", file=sys.stderr)
         return 2
     try:

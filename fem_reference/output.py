@@ -1,7 +1,7 @@
 """Figures (matplotlib, PNG/PDF/SVG) and VTU export (meshio) of a solve's result: a
-stationary :class:`~.result.ContactResult`, a plane-strain
-:class:`~.rolling_result.RollingResult` or a 3D
-:class:`~.rolling3d_result.SphereRollingResult`.
+stationary :class:`~.stationary.result.ContactResult`, a plane-strain
+:class:`~.rolling.plane_strain.result.CylinderRollingResult` or a 3D
+:class:`~.rolling.three_d.result.SphereRollingResult`.
 
 Figures are bare :class:`matplotlib.figure.Figure` objects (no pyplot, no
 ``matplotlib.use``): the caller's backend is left as it is.
@@ -11,9 +11,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from .result import ContactResult
-from .rolling3d_result import SphereRollingResult
-from .rolling_result import RollingResult
+from .rolling.result import RollingResult
+from .rolling.three_d.result import SphereRollingResult
+from .stationary.result import ContactResult
 
 __all__ = ["plot_result", "write_vtu"]
 

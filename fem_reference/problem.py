@@ -122,7 +122,7 @@ class FemSettings:
         Axisymmetric (r, z) model, a quarter cylinder in 3D (symmetry planes
         x = 0 and y = 0), or the plane-strain (x, z) section of a line contact. With
         ``loading.speed`` > 0, "3d" is steady rolling of a sphere on the half box
-        y >= 0 (:mod:`.rolling_solve`, :mod:`.rolling3d_system`).
+        y >= 0 (:mod:`.rolling.three_d`).
         Default: "plane_strain" for a line indenter, "axisymmetric" otherwise.
     element_size : float, optional
         Element size h_c (m) in the candidate contact zone. Default: axisymmetric
@@ -165,7 +165,7 @@ class FemSettings:
         Relative (preconditioned) residual tolerance of MINRES (-), default 1e-8.
     fit_nodes : int
         Number of surface vertices (along a radius) just outside the contact used to
-        fit g^(2/3) for the contact radius (>= 2); see :mod:`.postprocess`.
+        fit g^(2/3) for the contact radius (>= 2); see :mod:`.edge_fit`.
     max_iterations : int
         Limit of the active-set iteration (>= 1).
     """

@@ -2,23 +2,17 @@
 
 The point's case is turned into a problem by :func:`bem.case.problem_from_config`; the
 group's kernel set is cut to the point's grid (:func:`sweeps.kernels.fit_kernels`) and
-handed to :func:`bem.solve_frictionless` or :func:`bem.solve_friction`,
-so no kernel is formed again. A frictionless rolling point also gets the energy figure
-``P_visc / V`` (:func:`bem.energy.viscous_dissipation`), which a frictional solve
-reports itself. Any error becomes a ``failed`` row with its message: one bad point never
-stops the others.
+handed to :func:`bem.solve`, so no kernel is formed again. The result carries its energy
+figure (``P_visc / V``, frictionless or frictional). Any error becomes a ``failed`` row
+with its message: one bad point never stops the others.
 """
 
 from __future__ import annotations
 
-import math
 import time
 
-import numpy as np
-
+import bem
 from bem.case import friction_from_config, problem_from_config
-from bem.energy import viscous_dissipation
-from bem import solve_friction, solve_frictionless
 
 from .kernels import fit_kernels
 from .table import RESULTS
@@ -50,24 +44,14 @@ def solve_point(index: int, config: dict, kernels: dict | None) -> dict:
         problem, auto = problem_from_config(config)
         friction = friction_from_config(config)
         own = None if kernels is None or getattr(problem, "plane_strain", False) else fit_kernels(kernels, problem.grid)
-        if friction is None:
-            result, timings = solve_frictionless(problem, grow=auto, kernels=own)
-            V = problem.loading.speed
-            t1 = time.perf_counter()
-            energy = math.nan
-            if V > 0 and not getattr(problem, "plane_strain", False):  # (a line contact: no 3D energy sum)
-                zero = np.zeros(result.grid.shape)
-                energy = viscous_dissipation(result.grid, problem.layer, V, -result.force, zero, zero) / V
-            timings["energy_s"] = time.perf_counter() - t1
-            values = {**scalars(result.summary()), "rolling_resistance_energy": energy, "speed": V}
-        else:
-            result, timings = solve_friction(problem, friction, kernels=own)
-            values = scalars(result.summary())
+        result = bem.solve(problem, friction, grow=auto and friction is None, kernels=own)
+        values = scalars(result.summary())
+        if friction is not None:
             values["friction_share"] = result.rolling_resistance_friction / result.rolling_resistance_energy
         row.update(values)
         row.update(status="ok", error="", nodes_x=getattr(result.grid, "nodes_x", ""),
                    nodes_y=getattr(result.grid, "nodes_y", ""),
-                   iterations=result.record.iterations, **timings)
+                   iterations=result.record.iterations, **result.record.times)
     except Exception as exc:  # recorded, never raised: the sweep goes on
         row.update(status="failed", error=f"{type(exc).__name__}: {exc}".replace("\n", " "))
     row["seconds"] = time.perf_counter() - t0

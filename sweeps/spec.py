@@ -18,9 +18,13 @@ A sweep file is TOML (``docs/sweeps.md``)::
     law = "power"                               # or "two_exponential"
     y = "rolling_resistance"
 
-Every point is the base case with the axis values set, checked by
-:func:`casefile.validate` for the BEM before anything runs, so a bad value is an error
-that names the point. Units are the case file's (SI).
+The keys of each table are declared below (:data:`TOP`, :data:`AXIS`, :data:`OUTPUT`,
+:data:`FIT`) and checked by the case files' validation engine
+(:func:`casefile.validation.check_table`): an unknown key, a wrong type or a missing
+base case is a :class:`SweepError` in the same words as a case-file error. Every point is
+the base case with the axis values set, checked by :func:`casefile.validate` for the BEM
+before anything runs, so a bad value is an error that names the point. Units are the case
+file's (SI).
 """
 
 from __future__ import annotations
@@ -29,7 +33,6 @@ import copy
 import hashlib
 import itertools
 import json
-import math
 import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -38,20 +41,52 @@ import numpy as np
 
 import casefile
 from casefile.schema import section
+from casefile.validation import InputError, Key, check_table, check_value, did_you_mean
 
-__all__ = ["SweepError", "Axis", "FitRequest", "Sweep", "Point", "read_sweep", "expand", "LAWS"]
+from .table import RESULTS
+
+__all__ = ["SweepError", "Axis", "FitRequest", "Sweep", "Point", "read_sweep", "expand", "LAWS",
+           "TOP", "AXIS", "OUTPUT", "FIT"]
 
 #: the fitted laws (``sweeps.fits``)
 LAWS = ("power", "two_exponential")
-_TOP = ("name", "case", "set", "combine", "axis", "output", "fit")
+
+#: the top level of a sweep file
+TOP = (
+    Key("name", "string", doc="the sweep's name (default: the file's name without .toml)"),
+    Key("case", "paths", doc="the base case file, or a list of them (an axis \"case\"), relative to the "
+        "sweep file", required=True),
+    Key("set", "strings", doc="overrides \"section.key=value\" of every base case"),
+    Key("combine", "string", doc="how the axes combine", default="product", choices=("product", "zip")),
+    Key("axis", "tables", doc="the varied keys, one [[axis]] each"),
+    Key("output", "table", doc="the plots"),
+    Key("fit", "tables", doc="laws fitted to the curves, one [[fit]] each"),
+)
+#: an ``[[axis]]``: ``key`` and either ``values`` or ``start``, ``stop``, ``num`` (``scale``)
+AXIS = (
+    Key("key", "string", doc="the varied case key, section.key", required=True),
+    Key("values", "list", doc="the values, in the key's unit"),
+    Key("start", "number", doc="first value of a range"),
+    Key("stop", "number", doc="last value of a range"),
+    Key("num", "integer", doc="number of values of a range", rule=">=1"),
+    Key("scale", "string", doc="spacing of a range", default="linear", choices=("linear", "log")),
+)
 
 
-class SweepError(ValueError):
+#: ``[output]``
+OUTPUT = (
+    Key("x", "string", doc="the plots' abscissa, an axis key (default: the first axis)"),
+    Key("plot", "strings", doc="results drawn against x", choices=tuple(RESULTS)),
+)
+#: a ``[[fit]]``
+FIT = (
+    Key("law", "string", doc="the fitted law", required=True, choices=LAWS),
+    Key("y", "string", doc="the fitted result", default="rolling_resistance", choices=tuple(RESULTS)),
+)
+
+
+class SweepError(InputError):
     """A sweep file, or a point it makes, that cannot run."""
-
-
-def _number(value) -> bool:
-    return isinstance(value, (int, float)) and not isinstance(value, bool)
 
 
 @dataclass(frozen=True)
@@ -80,11 +115,13 @@ class Axis:
         if not dot or spec is None:
             from casefile import SCHEMA
 
+            known = [s.name for s in SCHEMA]
             raise SweepError(f"axis key {self.key!r} must be section.key with a known section "
-                             f"({', '.join(s.name for s in SCHEMA)})")
+                             f"({', '.join(known)}){did_you_mean(sec, known) if dot else ''}")
         if not spec.all_keys(name):
             known = sorted({k.name for k in spec.keys} | {k.name for v in spec.variants.values() for k in v.keys})
-            raise SweepError(f"axis key {self.key!r}: [{sec}] has no key {name!r}; known keys: {', '.join(known)}")
+            raise SweepError(f"axis key {self.key!r}: [{sec}] has no key {name!r}; known keys: {', '.join(known)}"
+                             f"{did_you_mean(name, known)}")
 
     @property
     def kinds(self) -> set:
@@ -94,50 +131,35 @@ class Axis:
 
 
 def _axis(where: str, table: dict) -> Axis:
-    if not isinstance(table, dict):
-        raise SweepError(f"{where} must be a table ([[axis]]), got {table!r}")
-    unknown = set(table) - {"key", "values", "start", "stop", "num", "scale"}
-    if unknown:
-        raise SweepError(f"{where}: unknown key(s) {', '.join(sorted(unknown))}; an axis has key and either values "
-                         "or start, stop, num (and scale = \"linear\" | \"log\")")
-    key = table.get("key")
-    if not isinstance(key, str):
-        raise SweepError(f"{where} needs key = \"section.key\", got {key!r}")
+    if isinstance(table, dict) and isinstance(table.get("key"), str):
+        where = f"{where} ({table['key']})"
+    table = check_table(where, table, AXIS, error=SweepError)
+    key = table["key"]
     ranged = {"start", "stop", "num", "scale"} & set(table)
     if ("values" in table) == bool(ranged):
-        raise SweepError(f"{where} ({key}): give either values = [...] or start, stop and num")
+        raise SweepError(f"{where}: give either values = [...] or start, stop and num")
     if "values" in table:
         values = table["values"]
-        if not isinstance(values, list) or not values:
-            raise SweepError(f"{where} ({key}): values must be a non-empty list, got {values!r}")
-        Axis(key, tuple(values))  # the key's own check first
-        if key != "case" and {"number", "integer"} & Axis(key, tuple(values)).kinds:
-            bad = [v for v in values if not _number(v) or not math.isfinite(v)]
-            if bad:
-                raise SweepError(f"{where} ({key}): values must be finite numbers, got {bad[0]!r}")
-        return Axis(key, tuple(values))
+        axis = Axis(key, tuple(values))  # the key's own check first
+        if key != "case" and {"number", "integer"} & axis.kinds:  # the range rules: when the points are checked
+            unit = section(key.partition(".")[0]).all_keys(key.partition(".")[2])[0].unit
+            check_value(f"{where} values", Key("values", "numbers", unit), values, error=SweepError)
+        return axis
     missing = [k for k in ("start", "stop", "num") if k not in table]
     if missing:
-        raise SweepError(f"{where} ({key}): a range needs start, stop and num; missing {', '.join(missing)}")
+        raise SweepError(f"{where}: a range needs start, stop and num; missing {', '.join(missing)}")
     start, stop, num, scale = table["start"], table["stop"], table["num"], table.get("scale", "linear")
-    for name, v in (("start", start), ("stop", stop)):
-        if not _number(v) or not math.isfinite(v):
-            raise SweepError(f"{where} ({key}): {name} must be a finite number, got {v!r}")
-    if not isinstance(num, int) or isinstance(num, bool) or num < 1:
-        raise SweepError(f"{where} ({key}): num must be an integer >= 1 (the number of values), got {num!r}")
-    if scale not in ("linear", "log"):
-        raise SweepError(f"{where} ({key}): scale must be \"linear\" or \"log\", got {scale!r}")
     if scale == "log" and not (start > 0 and stop > 0):
-        raise SweepError(f"{where} ({key}): a log range needs start > 0 and stop > 0, got {start!r}, {stop!r}")
+        raise SweepError(f"{where}: a log range needs start > 0 and stop > 0, got {start!r}, {stop!r}")
     if num > 1 and start == stop:
-        raise SweepError(f"{where} ({key}): start = stop = {start!r} with num = {num} repeats one value")
+        raise SweepError(f"{where}: start = stop = {start!r} with num = {num} repeats one value")
     grid = np.geomspace(start, stop, num) if scale == "log" else np.linspace(start, stop, num)
     axis = Axis(key, tuple(float(v) for v in grid))
     if axis.kinds == {"integer"}:
         ints = tuple(dict.fromkeys(int(round(v)) for v in grid))
         axis = Axis(key, ints)
     elif not axis.kinds & {"number", "integer"}:
-        raise SweepError(f"{where} ({key}): a range needs a numeric key; {key} takes {', '.join(sorted(axis.kinds))}")
+        raise SweepError(f"{where}: a range needs a numeric key; {key} takes {', '.join(sorted(axis.kinds))}")
     return axis
 
 
@@ -228,58 +250,29 @@ def read_sweep(path: str | Path) -> Sweep:
     except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
         raise SweepError(f"{path}: not a valid TOML file: {exc}") from None
     src = str(path)
-    unknown = set(data) - set(_TOP)
-    if unknown:
-        raise SweepError(f"{src}: unknown key(s) {', '.join(sorted(unknown))}; a sweep file has {', '.join(_TOP)}")
-    case = data.get("case")
-    case_list = case if isinstance(case, list) else [case]
-    if case is None or not case_list or not all(isinstance(c, str) for c in case_list):
-        raise SweepError(f"{src}: case must be the path of a case file (or a list of them), got {case!r}")
-    cases, raw = [], {}
-    for c in case_list:
-        p = (path.parent / c).resolve()
-        if not p.is_file():
-            raise SweepError(f"{src}: case file {str(p)!r} not found (paths are relative to the sweep file)")
+    data = check_table(src, data, TOP, folder=path.parent, error=SweepError)  # resolves the case paths
+    cases = data["case"] if isinstance(data["case"], list) else [data["case"]]
+    raw = {}
+    for p in cases:
         try:
-            raw[str(p)] = tomllib.loads(p.read_text(encoding="utf-8"))
+            raw[p] = tomllib.loads(Path(p).read_text(encoding="utf-8"))
         except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
-            raise SweepError(f"{src}: case file {str(p)!r} is not valid TOML: {exc}") from None
-        cases.append(str(p))
+            raise SweepError(f"{src}: case file {p!r} is not valid TOML: {exc}") from None
     overrides = data.get("set", [])
-    if not isinstance(overrides, list) or not all(isinstance(o, str) for o in overrides):
-        raise SweepError(f"{src}: set must be a list of \"section.key=value\" strings, got {overrides!r}")
     for o in overrides:
         try:
             casefile.parse_override(o)
         except casefile.CaseFileError as exc:
-            raise SweepError(f"{src}: set: {exc}") from None
-    tables = data.get("axis", [])
-    if not isinstance(tables, list):
-        raise SweepError(f"{src}: axes are [[axis]] tables")
-    axes = [_axis(f"{src}: [[axis]] #{i + 1}", t) for i, t in enumerate(tables)]
+            raise SweepError(f"{src} set: {exc}") from None
+    axes = [_axis(f"{src} [[axis]] #{i + 1}", t) for i, t in enumerate(data.get("axis", []))]
     if len(cases) > 1:
         axes.insert(0, Axis("case", tuple(cases)))
     if not axes:
         raise SweepError(f"{src}: no [[axis]] (and a single case): nothing to sweep")
-    out = data.get("output", {})
-    if not isinstance(out, dict) or set(out) - {"x", "plot"}:
-        raise SweepError(f"{src}: [output] takes x (an axis key) and plot (a list of result names)")
+    out = check_table(f"{src} [output]", data.get("output", {}), OUTPUT, error=SweepError)
     plot = out.get("plot", ["rolling_resistance"])
-    if not isinstance(plot, list) or not all(isinstance(p, str) for p in plot):
-        raise SweepError(f"{src}: [output] plot must be a list of result names, got {plot!r}")
-    from .table import RESULTS
-
-    for name in plot:
-        if name not in RESULTS:
-            raise SweepError(f"{src}: [output] plot: unknown result {name!r}; results: {', '.join(RESULTS)}")
-    fits = []
-    for i, f in enumerate(data.get("fit", [])):
-        if not isinstance(f, dict) or set(f) - {"law", "y"} or "law" not in f:
-            raise SweepError(f"{src}: [[fit]] #{i + 1} takes law ({', '.join(LAWS)}) and y (a result name)")
-        y = f.get("y", "rolling_resistance")
-        if y not in RESULTS:
-            raise SweepError(f"{src}: [[fit]] #{i + 1}: unknown result {y!r}; results: {', '.join(RESULTS)}")
-        fits.append(FitRequest(f["law"], y))
+    fits = [check_table(f"{src} [[fit]] #{i + 1}", f, FIT, error=SweepError) for i, f in enumerate(data.get("fit", []))]
+    fits = [FitRequest(f["law"], f.get("y", "rolling_resistance")) for f in fits]
     return Sweep(
         name=data.get("name", path.stem), source=src, cases=tuple(cases), overrides=tuple(overrides),
         axes=tuple(axes), combine=data.get("combine", "product"), x=out.get("x", ""), plot=tuple(plot),
@@ -311,7 +304,7 @@ def expand(sweep: Sweep) -> list[Point]:
         case = values.get("case", sweep.cases[0])
         data = copy.deepcopy(sweep.raw_cases[case])
         label = ", ".join(f"{k} = {Path(v).name if k == 'case' else v!r}" for k, v in values.items())
-        where = f"{sweep.source}: point {index} ({label})"
+        where = f"{sweep.source} point {index} ({label})"
         try:
             data = casefile.apply_overrides(data, sweep.overrides)
             for key, value in values.items():

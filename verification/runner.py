@@ -4,7 +4,7 @@ anything is solved, then run each through its kind.
 A case file (``verification/cases/*.toml``) holds the physical problem (the schema of
 ``bem solve``), the levels of each method, the analytic reference and the gates: which
 quantity of which method is compared against which reference, with its tolerance and the
-reason for it (:mod:`verification.schema`, ``docs/verification-cases.md``).
+reason for it (:mod:`verification.schema`, ``docs/verification.md``).
 """
 
 from __future__ import annotations

@@ -1,8 +1,12 @@
-"""Frictional steady rolling and sliding (Coulomb friction), the solver of
-:mod:`bem.friction`'s equations: Kalker's active set on contact, stick and slip sets.
+"""Frictional steady rolling and sliding (Coulomb friction): the model (its equations,
+inputs and results) and its solver, Kalker's active set on contact, stick and slip sets.
 
 Modules, one concept each:
 
+* :mod:`~bem.frictional.model`: the equations, :class:`Friction` (the input),
+  :class:`FrictionalContact` (the result) and the errors;
+* :mod:`~bem.frictional.options`: :class:`SolverOptions`, the solver's tuning in one place
+  (``docs/frictional-solver.md`` says what each field trades);
 * :mod:`~bem.frictional.operators`: the nine compliance blocks, FFT products and dense blocks;
 * :mod:`~bem.frictional.system`: the sets (:class:`SetState`), what stays fixed
   (:class:`RollingSetup`) and the linear system of one state (:class:`SetSystem`);
@@ -26,10 +30,13 @@ right-preconditioned GMRES (:func:`bem.linear.fgmres`) with FFT products and the
 preconditioner.
 """
 
+from .model import MODES, Friction, FrictionalContact, FrictionNotConverged, FrictionRecord, LoadingUnreachable
 from .active_set import ActiveSetResult, run_active_set
 from .operators import RollingOperators
+from .options import SolverOptions
 from .solve import solve_friction, solve_rolling
 from .system import RollingSetup, SetState, SetSystem
 
-__all__ = ["ActiveSetResult", "RollingOperators", "RollingSetup", "SetState", "SetSystem", "run_active_set",
-           "solve_friction", "solve_rolling"]
+__all__ = ["MODES", "Friction", "FrictionalContact", "FrictionNotConverged", "FrictionRecord", "LoadingUnreachable",
+           "ActiveSetResult", "RollingOperators", "RollingSetup", "SetState", "SetSystem", "run_active_set",
+           "SolverOptions", "solve_friction", "solve_rolling"]

@@ -1,11 +1,11 @@
 """The loading modes: the equilibrium row each adds, and the check that friction can
-carry what the mode asks for (see :mod:`bem.friction` for the equations)."""
+carry what the mode asks for (see :mod:`bem.frictional` for the equations)."""
 
 from __future__ import annotations
 
 import numpy as np
 
-from ..friction import LoadingUnreachable
+from .model import LoadingUnreachable
 
 __all__ = ["constraint", "check_reachable"]
 

@@ -7,40 +7,35 @@ at 513 x 513 took four global solves for it (+8, +8, +4, +2 stick nodes), each a
 solve of the whole contact.
 
 What. After a global solve whose stick and slip sets change at a few nodes (the contact
-set unchanged), the tangential forces of the contact nodes within :data:`WINDOW` nodes
+set unchanged), the tangential forces of the contact nodes within ``local_window`` nodes
 along the row of each changed node are solved again, exactly, for the new sets: the
 normal forces, ``d``, ``Omega`` and every other force held, the window's own compliance
 blocks dense (the rows of :func:`~bem.frictional.system.force_rows`, written from the
 slip velocities ``w`` and forces the last solve left). The window's nodes are then tested
 as the active set tests every node (a stick node beyond the cone slips, a slip node whose
 slip turned against its force sticks), its slip directions and slopes renewed, and solved
-again until its sets repeat, at most :data:`ROUNDS` times. The active set
+again until its sets repeat, at most ``local_rounds`` times
+(:class:`~bem.frictional.options.SolverOptions`' fields). The active set
 (:func:`~bem.frictional.active_set.run_active_set`) starts its next global solve from
 these forces when they changed more nodes than the global solve did; at 513 x 513 four
 rounds (30 ms) settled the +8 of the first of those solves and +10 more, and the run took
 9 active-set iterations instead of 10. A round costs the window's dense solve, ``(2 m)^3``
 for ``m`` window nodes: the active set calls it on large contacts only
-(:data:`~bem.frictional.active_set.LOCAL_FROM`).
+(``local_from``).
 """
 
 from __future__ import annotations
 
 import numpy as np
 
+from .options import SolverOptions
 from .system import RollingSetup, SetState
 
-__all__ = ["WINDOW", "ROUNDS", "solve_rows"]
-
-#: contact nodes on either side of a changed node, along its grid row, that its local
-#: solve frees (-); measured at 513 x 513: 6, 8, 10 and 20 take the same path (the creep
-#: there moves 1-2 nodes a row and round)
-WINDOW = 8
-#: local rounds at most after one global solve
-ROUNDS = 8
+__all__ = ["solve_rows"]
 
 
 def solve_rows(setup: RollingSetup, state: SetState, changed: np.ndarray, N, Sx, Sy, omega: float, fields,
-               floor: float):
+               floor: float, options: SolverOptions | None = None):
     """The local solves after a global solve (see the module docstring).
 
     Parameters
@@ -57,8 +52,10 @@ def solve_rows(setup: RollingSetup, state: SetState, changed: np.ndarray, N, Sx,
     fields : tuple of ndarray
         Its deflection (m) and upwind strains ``du/dx, dv/dx`` (-), full grid.
     floor : float
-        The smallest slip speed (m/s) the slopes take (:data:`~bem.frictional.violations.
-        SLOPE_FLOOR` times ``V``, faded by the slip misfit, as the active set does).
+        The smallest slip speed (m/s) the slopes take (``slope_floor`` times ``V``, faded
+        by the slip misfit, as the active set does).
+    options : SolverOptions, optional
+        ``local_window``, ``local_rounds`` and ``cone_tol``; default ``SolverOptions()``.
 
     Returns
     -------
@@ -70,10 +67,11 @@ def solve_rows(setup: RollingSetup, state: SetState, changed: np.ndarray, N, Sx,
         Local solves done; 0 (and the state and forces given) when the window's rows are
         singular.
     """
+    o = SolverOptions() if options is None else options
     ops, V, mu = setup.ops, setup.speed, setup.mu
     Kx = ops.grid.nodes_x
     row, col = np.divmod(np.asarray(changed), Kx)
-    cols = col[:, None] + np.arange(-WINDOW, WINDOW + 1)
+    cols = col[:, None] + np.arange(-o.local_window, o.local_window + 1)
     inside = (cols >= 0) & (cols < Kx)
     near = np.unique((row[:, None] * Kx + cols)[inside])
     near = near[state.contact[near]]
@@ -87,8 +85,7 @@ def solve_rows(setup: RollingSetup, state: SetState, changed: np.ndarray, N, Sx,
     Sx0, Sy0, Sx, Sy = Sx, Sy, Sx.copy(), Sy.copy()
     stick, direction, slope = state.stick.copy(), state.direction.copy(), state.slope.copy()
     ell = setup.ell[near]
-    rounds = 0
-    for rounds in range(1, ROUNDS + 1):
+    for rounds in range(1, o.local_rounds + 1):
         st = stick[near]
         ex, ey = direction[near, 0], direction[near, 1]
         kk = slope[near] * ax / V
@@ -118,7 +115,7 @@ def solve_rows(setup: RollingSetup, state: SetState, changed: np.ndarray, N, Sx,
         fx, fy = Sx[near], Sy[near]
         wx, wy = V * (1 + sx) - omega * ell, V * sy
         smag, wmag = np.hypot(fx, fy), np.hypot(wx, wy)
-        to_slip = st & (smag > mu * n * (1 + 1e-10))
+        to_slip = st & (smag > mu * n * (1 + o.cone_tol))
         to_stick = slip & (wx * fx + wy * fy <= 0)
         new = (st & ~to_slip) | to_stick
         stick[near] = new

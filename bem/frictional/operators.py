@@ -11,6 +11,7 @@ import scipy.fft as sfft
 from ..grid import Grid
 from ..kinematics import upwind_table
 from ..operator import ComplianceOperator, fft_workers
+from .options import SolverOptions
 
 __all__ = ["RollingOperators", "DIFFERENCED", "FIELDS"]
 
@@ -111,7 +112,7 @@ class RollingOperators:
         return sfft.irfft(sfft.ifft(F, axis=-2, overwrite_x=True)[:, :self.grid.nodes_y], n=emb[1])
 
     def row_filter(self, power: float, dtype=np.complex128, *, long: float | None = None,
-                   waves: float = 5.0) -> np.ndarray:
+                   waves: float = SolverOptions.filter_waves) -> np.ndarray:
         """The spectra ``(3, E_y, E_x / 2 + 1)`` of ``(C_row / C) ** q`` for the blocks
         ``ww, uu, vv`` on this grid's embedding (-): ``C`` the block's symbol, ``C_row``
         that of its kernel cut to one grid row (``C`` averaged over ``k_y``), what a solve

@@ -5,9 +5,9 @@ Why lines. A stick row is the upwind difference ``u_{i+1} - u_i`` along ``x``; i
 inverse is a running sum over the run of contact nodes from its leading end, plus the
 displacement just ahead of the run, which the forces of the whole line set. A
 preconditioner that drops that displacement (a running sum from zero, then the inverse
-circulant embedding of the 3 x 3 compliance, the former one) leaves one slow mode per
-run and component: 212 GMRES iterations on the converged 61 x 61 state of the
-benchmark case (``benchmarks/bem_friction_rolling.py``) and none converged in 4000 at
+circulant embedding of the 3 x 3 compliance) leaves one slow mode per
+run and component: 212 GMRES iterations on the converged 61 x 61 state of the elastic
+paraboloid (``benchmarks/bem_friction_rolling.py``) and none converged in 4000 at
 121 x 121. The exact inverse of the system restricted to one run of a grid row holds the
 running sum, the displacement ahead of the run and the slip rows exactly; what it leaves
 out is the coupling between rows: 66 and 73 iterations on the same states.
@@ -22,18 +22,14 @@ nodes (``2 p m`` numbers) and a ``2 p x 2 p`` matrix ``K`` a run makes the solve
 ``K^{-1}`` comes from the ``p x p`` inverses of the slip-slip blocks of the Toeplitz
 inverses (kept while a run's length and slip places repeat: they hold no direction or
 slope) and of one ``p x p`` matrix that holds the slip directions and slopes, not by
-inverting ``K`` (``docs/derivations.md`` section 5: section 11 at 513 x 513, the Woodbury
-terms of a late active-set iteration 0.22 -> 0.08 s). Against
-the dense inverse of each line (the module before issue 11's ninth pass: ``5 m^2``
-numbers a line, ``O(m^3)`` to build) the results agree to rounding and the build is
-cheap (``O(p m log m + p^3)``); section 11, one application on the converged state, single
-precision: 513 x 513 103-173 -> 57-76 ms, 257 x 257 about 10 % faster, smaller grids
-10-25 % slower; whole solves 1.1-1.7x faster (``BENCHMARKS.md``, ninth pass).
+inverting ``K`` (``docs/derivations.md`` section 5). Against the dense inverse of each
+line (``5 m^2`` numbers a line, ``O(m^3)`` to build) the results agree to rounding and the
+build is cheap (``O(p m log m + p^3)``); ``docs/frictional-solver.md`` has the figures.
 
 Why a filter after them. A line sees its own row's compliance only, the symbol averaged
 over ``k_y``, and so gets forces smooth in ``y`` too large and forces alternating from
 row to row too small; multiplying its forces in Fourier space by ``(C_row / C) ** p``
-(:data:`FILTER_POWER`, ``docs/derivations.md`` section 5) corrects that in the interior
+(``filter_power``, ``docs/derivations.md`` section 5) corrects that in the interior
 at the cost of two FFTs of the contact's box: GMRES iterations on converged states
 84 -> 38 at 257 x 257 and 105 -> 52 at 513 x 513 (section 11).
 """
@@ -44,66 +40,14 @@ import os
 
 import numpy as np
 
-from ..friction import FrictionNotConverged
+from .model import FrictionNotConverged
 from ..linear import bordered, eliminate
 from . import toeplitz
+from .options import SolverOptions
 from .system import SetSystem
 from .toeplitz import RowInverses
 
-__all__ = ["LinePreconditioner", "FILTER_POWER", "FILTER_LONG", "FILTER_WAVES", "THREAD_FROM"]
-
-#: the lines' forces are multiplied, in Fourier space on the contact's box, by
-#: ``(C_row / C) ** FILTER_POWER`` per component (``ww``, ``uu``, ``vv``;
-#: :meth:`~bem.frictional.operators.RollingOperators.row_filter`; 0: off). A
-#: line solve sees only its own row's compliance ``C_row``, the symbol ``C`` averaged over
-#: ``k_y``: it overshoots forces smooth in ``y`` (whose displacement the neighbouring rows
-#: add to) and undershoots forces alternating from row to row, and the preconditioned
-#: operator's spectrum spreads from 0.12 to about 20 (section 11 at 129 x 129, 200 Arnoldi
-#: steps on the converged state), besides the run ends' outliers. The filter is the
-#: interior's exact correction at power 1; the run ends prefer less. Measured (GMRES
-#: iterations from zero to 1e-10 |b| on the converged fine state, lines alone -> power 0.3 /
-#: 0.5 / 0.6 / 0.75 / 1): section 11 at 129 x 129 67 -> 42 / 32 / 29 / 37 / 56, at 257 x 257
-#: 84 -> 38 (0.5) / 39 (0.6) / 44 (0.7), at 513 x 513 105 -> 52 (0.5); the issue-11 case
-#: at 121 x 121 63 -> 35 / 33 / 37 (0.5 / 0.6 / 0.7). Before the lines instead of after,
-#: or on both sides: no better (129 x 129: 35 at 0.5; 0.3 on each side 39); the normal or
-#: the tangential components alone: 67 and 56
-FILTER_POWER = 0.5
-#: the row filter's power on the longest waves, blended into :data:`FILTER_POWER` on the
-#: short ones (:meth:`~bem.frictional.operators.RollingOperators.row_filter`'s ``long``,
-#: over :data:`FILTER_WAVES` waves across the contact's box; ``None``: one power). The
-#: forces smooth over the contact are the top of the spectrum that power 1/2 leaves (at
-#: 2.5-3.2 on the issue-11 case at 61 x 61, against 0.37-1.5 for the rest; 66-85 % of
-#: such a mode on aggregates of 8 x 8 nodes), and away from the run ends the exact
-#: correction is power 1; the run ends' disturbance is in the short waves. Measured (GMRES
-#: iterations from zero to 1e-10 |b| on the converged fine states, power 1/2 throughout ->
-#: ``long`` 0.7 / 0.8 / 0.9 / 1): issue-11 case 61 x 61 29 -> 26 / 25 / 25 / 25, 121 x 121
-#: 33 -> 28 / 27 / 28 / 29; section 11 at 129 x 129 31 -> 26 (all four), 257 x 257 38 ->
-#: 34 / 33 / 34 / 34, 513 x 513 53 -> 45 / 45 / 46 / 48. In whole solves the loose solves'
-#: error moves the active set's path, so the choice among them was made there (fine-grid
-#: active-set / GMRES iterations, 5 waves taken over the contact's diameter in a first
-#: trial; ``long`` 0.7 / 0.8 / 0.9 / 1 against 1/2 throughout): 61 x 61 5/65, 5/62, 5/61,
-#: 5/64 against 5/73; 121 x 121 5/76, 6/74, 6/72, 7/77 against 5/84; 257 x 257 7/90,
-#: 10/128, 8/93, 10/141 against 8/112. With 0.7 over the box: 5/65, 5/75, section 11 at
-#: 129 x 129 7/70 (against 7/86), 257 x 257 7/92, 513 x 513 10/190 (against 9/193)
-FILTER_LONG = 0.7
-#: waves across the contact's box at which the row filter's power is ``1/e`` of the way
-#: from :data:`FILTER_LONG` to :data:`FILTER_POWER`
-FILTER_WAVES = 5.0
-#: an application runs on two threads (half the runs each) when the runs' operands (the
-#: inverses or the spectra of the three blocks) take this many bytes or more
-THREAD_FROM = 4_000_000
-#: the columns of the runs' Toeplitz inverses at their slip nodes are computed for about
-#: this many slip nodes at a time (padded; the transforms' working memory, about 20 kB
-#: a slip node at 513 x 513)
-CHUNK = 2048
-#: runs with at most this many slip nodes (padded to 8) take ``K^{-1}`` composed from its
-#: factors (one product an application); longer ones apply the factors (five ``p x p``
-#: products against one ``2 p x 2 p``, no ``2 p x 2 p`` product to build). Measured,
-#: factors everywhere against the former ``K^{-1}``: one application 0.65 against 0.54 ms on
-#: the issue case at 61 x 61 (its runs hold 1-15 slip nodes), the same (0.545 ms) composed
-COMPOSE_UPTO = 16
-
-
+__all__ = ["LinePreconditioner"]
 
 
 def _runs(system: SetSystem) -> tuple[np.ndarray, np.ndarray]:
@@ -119,16 +63,16 @@ def _bordered(system: SetSystem, forces, kept=None):
     ``d`` (load control) and ``Omega`` (when free) eliminated by their Schur complement
     (:func:`bem.linear.bordered`; their columns ``F`` in the force rows from
     :meth:`SetSystem.rows` with no forces, their rows from :meth:`SetSystem.global_rows`);
-    when that complement is singular, the former treatment: the global rows passed on,
+    when that complement is singular, the global rows passed on,
     ``Omega``'s scaled by the inverse of its stick-row coefficient ``1 / a_x``. ``kept``:
     the complement's parts from an earlier state with the same contact set, reused
     (returns the preconditioner and the parts it used).
 
-    With the former treatment the preconditioned operator kept a real pair of outliers at
-    about -113 and 116 whose vectors lay 88 % on ``d`` and ``Omega`` and a complex pair at
+    With the rows passed on the preconditioned operator keeps a real pair of outliers at
+    about -113 and 116 whose vectors lie 88 % on ``d`` and ``Omega`` and a complex pair at
     ``1.6 +- 28.6 i`` (normal forces on the contact's edge), both gone with the
     elimination (section 11 at 129 x 129, the converged state); fine-grid GMRES
-    iterations 155 -> 126 at 257 x 257 (``BENCHMARKS.md``, twelfth pass)."""
+    iterations 155 -> 126 at 257 x 257."""
     nC, n, k = system.nC, system.n, system.n - 3 * system.nC
     parts = kept
     if parts is None:
@@ -166,21 +110,20 @@ class LinePreconditioner:
     applications run in ``dtype`` (single by default: the flexible GMRES of
     :func:`bem.linear.fgmres` keeps every preconditioned vector, so rounding there costs
     no accuracy), the columns too, the Woodbury terms are inverted in double. With
-    ``threads`` an application whose operands take :data:`THREAD_FROM` bytes or more, and
-    the build's columns and inversions, run on two threads. ``filter_power`` (default
-    :data:`FILTER_POWER`, read at construction; 0: the lines alone) and ``filter_long``
-    (default ``"module"``: :data:`FILTER_LONG`, read at construction; ``None``:
-    ``filter_power`` on every wave) set the row filter applied after the lines. The global unknowns (``d``, a free ``Omega``) are eliminated
-    by their Schur complement (:func:`_bordered`), whose parts are kept while the contact
-    set, ``mu`` and the operators repeat.
+    ``threads`` an application whose operands take ``options.thread_from`` bytes or more,
+    and the build's columns and inversions, run on two threads. ``options``
+    (:class:`~bem.frictional.options.SolverOptions`, default ``SolverOptions()``) also sets
+    the row filter applied after the lines (``filter_power``, 0: the lines alone;
+    ``filter_long``, ``filter_waves``) and the thresholds ``chunk``, ``compose_upto``,
+    ``dense_upto``, ``batched_upto``. The global unknowns (``d``, a free ``Omega``) are
+    eliminated by their Schur complement (:func:`_bordered`), whose parts are kept while
+    the contact set, ``mu`` and the operators repeat.
     """
 
-    def __init__(self, dtype=np.float32, threads: bool = True, filter_power: float | None = None,
-                 filter_long: float | None | str = "module"):
+    def __init__(self, dtype=np.float32, threads: bool = True, options: SolverOptions | None = None):
         self.dtype = np.dtype(dtype)
         self.threads = threads
-        self.filter_power = FILTER_POWER if filter_power is None else filter_power
-        self.filter_long = FILTER_LONG if filter_long == "module" else filter_long
+        self.options = SolverOptions() if options is None else options
         self.inverses: RowInverses | None = None
         self._ops = None
         self._columns: tuple = (np.zeros(0, int), None)  # (length, place) keys, their columns
@@ -191,11 +134,13 @@ class LinePreconditioner:
     def _row_inverses(self, ops, longest: int) -> RowInverses:
         """The :class:`RowInverses` of ``ops`` for runs of up to ``longest`` nodes (kept;
         rebuilt for new operators or a longer run, to a multiple of 16 nodes). Raises
-        :class:`~bem.friction.FrictionNotConverged` when a row block's leading block is
+        :class:`~bem.frictional.FrictionNotConverged` when a row block's leading block is
         singular (Levinson's recursion needs every one regular)."""
         if self._ops is not ops or self.inverses.M < longest:
             try:
-                self.inverses = RowInverses(ops, -(-longest // 16) * 16)
+                o = self.options
+                self.inverses = RowInverses(ops, -(-longest // 16) * 16, dense_upto=o.dense_upto,
+                                            batched_upto=o.batched_upto)
             except np.linalg.LinAlgError as exc:
                 raise FrictionNotConverged(
                     f"the line preconditioner cannot be built on this grid: {exc}; solve by dense LU "
@@ -216,10 +161,11 @@ class LinePreconditioner:
 
     def _row_filter(self, system: SetSystem):
         """The row filter's spectra on ``system``'s box (``None`` when off)."""
-        if not self.filter_power:
+        o = self.options
+        if not o.filter_power:
             return None
         cplx = np.complex64 if self.dtype == np.float32 else np.complex128
-        return system.box.row_filter(self.filter_power, cplx, long=self.filter_long, waves=FILTER_WAVES)
+        return system.box.row_filter(o.filter_power, cplx, long=o.filter_long, waves=o.filter_waves)
 
     def attach(self, system: SetSystem) -> None:
         ops, nC, n = system.ops, system.nC, system.n
@@ -241,7 +187,7 @@ class LinePreconditioner:
         dt, diag = self.dtype, system.diag
         ex, ey, kk = (a.astype(dt) for a in (system.dir_x, system.dir_y, system.slope))
         size = spec_n.nbytes + spec_t.nbytes
-        two = self.threads and (os.cpu_count() or 1) > 1 and size >= THREAD_FROM
+        two = self.threads and (os.cpu_count() or 1) > 1 and size >= self.options.thread_from
         box, spectra = system.box, self._row_filter(system)
 
         def correct(Z, c, qs):
@@ -297,7 +243,7 @@ class LinePreconditioner:
         else:
             # the Schur complement's parts are kept while the contact set repeats (the stick
             # set, directions and slopes then move little): measured, the same GMRES
-            # iterations on the issue case and section 11 up to 257 x 257 as with a new
+            # iterations on the elastic paraboloid and section 11 up to 257 x 257 as with a new
             # complement every time, or one for each stick set too; two applications
             # saved an attach
             key = (system.C.tobytes(), system.free_d, system.free_om, system.setup.mu)
@@ -309,7 +255,7 @@ class LinePreconditioner:
         """The runs' Woodbury terms, grouped by slip count ``p`` (padded to a multiple of 8,
         ``P``): ``[(members, at, where, G^{-1}, H^{-1} or K^{-1}, e_x, e_y, Y)]`` for the runs
         ``members`` (``L``), with ``G^{-1}`` ``(L, 2, P, P)`` the inverses of ``G_x, G_y``,
-        ``H^{-1}`` ``(L, P, P)`` (or, for ``P <=`` :data:`COMPOSE_UPTO`, ``K^{-1}`` ``(L, 2 P,
+        ``H^{-1}`` ``(L, P, P)`` (or, for ``P <= compose_upto``, ``K^{-1}`` ``(L, 2 P,
         2 P)`` itself, composed from them), the slip directions ``(L, P)``, ``Y`` ``(2, L, P,
         M)`` the runs' Toeplitz inverses' columns at their slip nodes (``x`` then ``y``, as
         rows), all in ``dtype``, 0 (identity blocks) on padding; ``where`` the slip rows (``x``
@@ -359,7 +305,7 @@ class LinePreconditioner:
             i = 0
             while i < order.size:
                 P = per[order[i]]
-                part = order[i:i + max(1, CHUNK // P)]
+                part = order[i:i + max(1, self.options.chunk // P)]
                 i += part.size
                 pos = np.zeros((part.size, P), int)
                 dest = np.full((part.size, P), -1)
@@ -425,7 +371,7 @@ class LinePreconditioner:
                 P = H.shape[1]
                 H[:, np.arange(P), np.arange(P)] += g["k"]
                 Hi = np.linalg.inv(H)
-                if P > COMPOSE_UPTO:
+                if P > self.options.compose_upto:
                     g["H"] = Hi
                     continue
                 # small runs: K^-1 itself, [[G_x^-1 (E_x + E_y H^-1 D) / d, G_x^-1 E_y H^-1],

@@ -13,7 +13,7 @@ import numpy as np
 
 from ..contact import ContactError, NormalContact, coarse_grid, coarse_solution, solve_normal
 from ..energy import viscous_dissipation
-from ..friction import Friction, FrictionalContact, FrictionNotConverged, FrictionRecord, LoadingUnreachable
+from .model import Friction, FrictionalContact, FrictionNotConverged, FrictionRecord, LoadingUnreachable
 from ..kinematics import indenter_radius, rolling_radius
 from ..operator import one_worker
 from ..problem import Problem, compute_kernels
@@ -21,54 +21,23 @@ from ..spectral import BLOCKS
 from .active_set import ActiveSetResult, LinearSolves, run_active_set
 from .loading import check_reachable, constraint
 from .operators import RollingOperators
+from .options import SolverOptions
 from .starts import coarse_forces, coarse_start, continuation, frictionless_start, saturation_creepage
 from .system import RollingSetup, SetState, SetSystem
 
-__all__ = ["solve_friction", "solve_rolling", "COARSE_SETTLE", "START_RTOL", "OVERLAP_FROM"]
-
-#: a coarse level of the start ends once its sets repeat and its slip misfit is at most
-#: this (-), without the tight solve (:func:`run_active_set`'s ``settle``): the fine grid
-#: reads its sets, slip directions and slip speeds, and its forces as a first iterate.
-#: Measured (active-set / GMRES
-#: iterations of the coarse levels, converged to 1e-7 -> settled at 0.1; the fine grid's
-#: iterations within 2 GMRES, the same converged state): issue-11 case 121 x 121, 61 x 61
-#: level 5 / 87 -> 3 / 44 and 31 x 31 level 11 / 122 -> 9 / 91; section 11 at 129 x 129,
-#: 65 x 65 level 7 / 108 -> 5 / 71 and 33 x 33 level 6 / 90 -> 4 / 56. Since the coarse
-#: forces start the fine grid's first solve (session 31), 0.1 -> 0.3: one coarse iteration
-#: fewer on five of the six benchmark grids (coarse iterations / GMRES, all levels: issue-11
-#: case 61 x 61 7 / 17 -> 6 / 17, 121 x 121 9 / 58 -> 8 / 55; section 11 at 129 x 129
-#: 10 / 56 -> 9 / 54, 257 x 257 10 / 73 -> 9 / 69, 513 x 513 16 -> 15; 41 x 41 5 / 30
-#: both) and the fine grids' iterations unchanged on all six; 1.0 saved one more at 121 x
-#: 121, 129 x 129 and 513 x 513 but cost the fine 41 x 41 grid a GMRES iteration
-COARSE_SETTLE = 0.3
-#: GMRES tolerance of the frictionless solve that starts a frictional one (-, relative to
-#: ``|b|``; the frictionless result itself, ``mu = 0``, keeps ``solve_normal``'s 1e-11):
-#: the start reads its contact set and forces. Measured (frictionless solve alone, 1e-11
-#: -> 1e-8: GMRES iterations, the same contact sets): issue-11 case 61 x 61 47 -> 35,
-#: 121 x 121 45 -> 33; section 11 at 129 x 129 66 -> 45, 257 x 257 70 -> 46 (1.05 ->
-#: 0.69 s); 1e-6 kept the sets too (24-31 iterations), 1e-4 made the active set cycle at
-#: 129 x 129, and 1e-6 made it cycle at 513 x 513 (section 11: ContactNotConverged after 8
-#: iterations; session 28)
-START_RTOL = 1e-8
-#: grids of at least this many nodes solve their frictionless start on a second thread
-#: while the coarse frictional levels solve (:func:`_first_solves`). Measured (frictional
-#: solve, alternated pairs against one thread, medians): issue-11 case 61 x 61 1.07x, 121 x
-#: 121 1.06x; section 11 at 129 x 129 1.09x, 257 x 257 1.10x; but the example's 41 x 41
-#: (1681 nodes, a 21 x 21 coarse level) 0.84x: there the two threads mostly wait for the GIL.
-#: Session 35 (the 61 x 61 grid's 31 x 31 level now from its frictionless start, the dense
-#: 16 x 16 level skipped), alternated with and without the second thread (20 pairs): issue-11
-#: case 61 x 61 wall 1.006, CPU 0.875 (3721 nodes: one thread now); 121 x 121 wall 0.906
-#: (16 pairs), CPU 1.07 with it
-OVERLAP_FROM = 4000
+__all__ = ["solve_friction", "solve_rolling"]
 
 
 def solve_friction(problem: Problem, friction: Friction, progress: Callable[[str], None] | None = None,
-                   kernels: dict | None = None, energy: bool = True) -> tuple[FrictionalContact, dict]:
+                   options: SolverOptions | None = None, kernels: dict | None = None,
+                   energy: bool = True) -> tuple[FrictionalContact, dict]:
     """Steady rolling/sliding of ``problem`` with Coulomb ``friction``: the frictional
     entry point (the frictionless one is :func:`bem.problem.solve_frictionless`).
 
     Returns the result and the timings (s) of the nine kernels, of the solve and of the
-    energy figure. Pass ``kernels`` (all nine blocks for this grid, layer and speed) to
+    energy figure. ``options`` tunes the solver (:class:`~bem.frictional.options.
+    SolverOptions`, default ``SolverOptions()``; it changes the path, not the converged
+    state). Pass ``kernels`` (all nine blocks for this grid, layer and speed) to
     reuse them. With ``energy`` the result carries ``rolling_resistance_energy``
     ``= (P_visc + P_fric) / V`` (N), the layer's dissipation summed in Fourier space
     (:func:`bem.energy.viscous_dissipation`, about 1.8 s at ``N_t = 2000``); otherwise it
@@ -91,7 +60,8 @@ def solve_friction(problem: Problem, friction: Friction, progress: Callable[[str
     R = indenter_radius(p.indenter, friction.radius)
     res = solve_rolling(ops, p.indenter.profile(X, Y), p.indenter.rolling_arm(X, Y),
                         rolling_radius(p.indenter, Y, friction.radius), R, p.loading.speed, friction,
-                        load=p.loading.load, indentation=p.loading.indentation, progress=progress)
+                        load=p.loading.load, indentation=p.loading.indentation, progress=progress,
+                        options=options)
     t2 = time.perf_counter()
     timings = {"kernel_s": kernel_s, "solve_s": t2 - t1}
     if energy:
@@ -107,7 +77,7 @@ def solve_friction(problem: Problem, friction: Friction, progress: Callable[[str
 def solve_rolling(ops: RollingOperators, profile, arm, ell, radius: float, speed: float,
                   friction: Friction, *, load=None, indentation=None,
                   progress: Callable[[str], None] | None = None, settle: float | None = None,
-                  normal: NormalContact | None = None) -> FrictionalContact:
+                  normal: NormalContact | None = None, options: SolverOptions | None = None) -> FrictionalContact:
     """Frictional steady rolling/sliding on prepared operators.
 
     Parameters
@@ -128,10 +98,12 @@ def solve_rolling(ops: RollingOperators, profile, arm, ell, radius: float, speed
         ``P`` (N) or ``d`` (m), exactly one.
     settle : float, optional
         End once the sets repeat with a slip misfit of at most this (-), without the tight
-        solve (a coarse level of the start, :data:`COARSE_SETTLE`); ``None``: converge.
+        solve (a coarse level of the start, ``options.coarse_settle``); ``None``: converge.
     normal : NormalContact, optional
         The frictionless solution of the same problem on this grid when already known (a
         coarse level's: the fine frictionless solve's ``coarse``); solved otherwise.
+    options : SolverOptions, optional
+        The solver's tuning (default ``SolverOptions()``), passed to the coarse levels.
 
     Raises
     ------
@@ -139,6 +111,7 @@ def solve_rolling(ops: RollingOperators, profile, arm, ell, radius: float, speed
     """
     if not (math.isfinite(speed) and speed > 0):
         raise ValueError(f"speed must be > 0 m/s for rolling or sliding with friction, got {speed!r}")
+    o = SolverOptions() if options is None else options
     g = ops.grid
     size = g.nodes_x * g.nodes_y
     arm, ell = np.asarray(arm, float).ravel(), np.asarray(ell, float).ravel()
@@ -147,9 +120,9 @@ def solve_rolling(ops: RollingOperators, profile, arm, ell, radius: float, speed
     setup = RollingSetup(ops=ops, profile=profile.ravel(), arm=arm, ell=ell, radius=radius,
                          speed=speed, mu=friction.mu, load=load, indentation=indentation, omega=friction.omega,
                          constraint=cons)
-    solves = LinearSolves(friction.dense_limit)
+    solves = LinearSolves(friction.dense_limit, o)
     known = normal if normal is not None and normal.grid.shape == g.shape else None
-    normal, coarse = _first_solves(setup, friction, known, progress, solves)
+    normal, coarse = _first_solves(setup, friction, known, progress, solves, o)
     N0 = normal.force.ravel()
     check_reachable(friction.mode, friction.mu, cons, N0)
     if friction.mu == 0:
@@ -159,7 +132,7 @@ def solve_rolling(ops: RollingOperators, profile, arm, ell, radius: float, speed
                        np.zeros(size, bool), (), "dense", 0)
 
     saturation = saturation_creepage(N0 > 0, g.shape, g.spacing_x, friction.mu, radius)
-    starts = [(frictionless_start(N0, ell, speed, friction, saturation), None)]
+    starts = [(frictionless_start(N0, ell, speed, friction, saturation, o.slip_creep), None)]
     if coarse is not None:
         # the coarse solution's sets start the fine grid's, its forces (prolonged) the first solve
         starts.insert(0, (coarse_start(coarse, g.shape, N0, friction.mu),
@@ -167,7 +140,7 @@ def solve_rolling(ops: RollingOperators, profile, arm, ell, radius: float, speed
     try:
         for i, (start, forces) in enumerate(starts):
             try:
-                out = run_active_set(setup, friction, start, solves, progress, settle, forces)
+                out = run_active_set(setup, friction, start, solves, progress, settle, forces, o)
                 break
             except FrictionNotConverged as exc:
                 if i == len(starts) - 1:
@@ -179,14 +152,14 @@ def solve_rolling(ops: RollingOperators, profile, arm, ell, radius: float, speed
     except FrictionNotConverged as exc:
         if friction.mode == "omega":
             raise
-        out = continuation(setup, friction, N0, solves, progress, exc)
+        out = continuation(setup, friction, N0, solves, progress, exc, o)
     return _finish(setup, friction, out, solves)
 
 
 def _first_solves(setup: RollingSetup, friction: Friction, normal: NormalContact | None, progress,
-                  solves: LinearSolves):
+                  solves: LinearSolves, options: SolverOptions):
     """The frictionless solution of the grid (``normal`` when known; GMRES to
-    :data:`START_RTOL`, or dense LU up to the frictional solve's own limit, 3 unknowns a
+    ``options.start_rtol``, or dense LU up to the frictional solve's own limit, 3 unknowns a
     node: at 61 x 61, 1977 contact nodes, dense LU took 0.9 s of a 1.5 s solve, GMRES
     0.05 s) and, with friction, the frictional solution on every other node
     (:func:`_coarse_solution`; ``None`` without). Both start from the frictionless solution
@@ -198,13 +171,13 @@ def _first_solves(setup: RollingSetup, friction: Friction, normal: NormalContact
     threads meanwhile transform on one worker each (:func:`bem.operator.one_worker`):
     with every core each, four transform threads shared two cores, and at 513 x 513 the
     coarse levels ended 2.4 s later and the fine frictionless solve took 5.2 s instead of
-    3.9 s (one run each; alternated whole solves: ``BENCHMARKS.md``, seventeenth pass)."""
+    3.9 s (one run each). From ``options.overlap_from`` grid nodes on."""
     ops, mu = setup.ops, friction.mu
     g = ops.grid
     ww, profile = ops.op("ww"), setup.profile
     kw = dict(load=setup.load, indentation=setup.indentation, dense_limit=friction.dense_limit // 3,
-              rtol=START_RTOL if mu > 0 else 1e-11)
-    if normal is None and mu > 0 and g.nodes_x * g.nodes_y >= OVERLAP_FROM:
+              rtol=options.start_rtol if mu > 0 else options.frictionless_rtol)
+    if normal is None and mu > 0 and g.nodes_x * g.nodes_y >= options.overlap_from:
         below = coarse_solution(ww, profile, **kw)
         if below is not None:
             # the grid's field spectra, which the first fine measure reads, built by the
@@ -218,14 +191,14 @@ def _first_solves(setup: RollingSetup, friction: Friction, normal: NormalContact
             with one_worker(), ThreadPoolExecutor(1, thread_name_prefix="frictionless-start") as pool:
                 job = pool.submit(_frictionless_prepared, setup, solves, ww, profile, below, kw, fields)
                 try:
-                    coarse = _coarse_solution(setup, friction, progress, below)
+                    coarse = _coarse_solution(setup, friction, progress, options, below)
                     fields()
                 finally:
                     normal = job.result()
             return normal, coarse
     if normal is None:
         normal = solve_normal(ww, profile, **kw)
-    return normal, (_coarse_solution(setup, friction, progress, normal.coarse) if mu > 0 else None)
+    return normal, (_coarse_solution(setup, friction, progress, options, normal.coarse) if mu > 0 else None)
 
 
 def _frictionless_prepared(setup: RollingSetup, solves: LinearSolves, ww, profile, below, kw,
@@ -242,7 +215,8 @@ def _frictionless_prepared(setup: RollingSetup, solves: LinearSolves, ww, profil
     return normal
 
 
-def _coarse_solution(setup: RollingSetup, friction: Friction, progress, normal=None) -> FrictionalContact | None:
+def _coarse_solution(setup: RollingSetup, friction: Friction, progress, options: SolverOptions,
+                     normal=None) -> FrictionalContact | None:
     """The same problem on every other node (recursively, as the frictionless solver's
     start; :func:`bem.frictional.starts.coarse_start` turns it into the fine grid's start
     sets): most of the stick/slip border is then in place and the fine grid needs a few
@@ -252,8 +226,8 @@ def _coarse_solution(setup: RollingSetup, friction: Friction, progress, normal=N
     known: at most ``friction.dense_limit`` unknowns there, more than that with four times
     its contact nodes): building and factorising a dense system at every iteration there
     cost more than the iterations it saved the level above. Measured
-    (whole solves alternated with and without that level, median ratios): issue-11 case
-    121 x 121 0.937-0.943 (its 16 x 16 level, about 370 unknowns, 58 ms of the calling
+    (whole solves alternated with and without that level, median ratios): the elastic
+    paraboloid at 121 x 121 0.937-0.943 (its 16 x 16 level, about 370 unknowns, 58 ms of the calling
     thread's coarse phase; the 31 x 31 level then takes one iteration more), 61 x 61
     0.998, section 11 at 129 x 129 1.03 (its 17 x 17 level; the coarse phase there ends
     with the fine frictionless solve on the other thread), with the same fine-grid paths.
@@ -276,8 +250,8 @@ def _coarse_solution(setup: RollingSetup, friction: Friction, progress, normal=N
     try:
         return solve_rolling(ops.coarse(coarse), fine(setup.profile), fine(setup.arm), fine(setup.ell), setup.radius,
                              setup.speed, friction, load=setup.load, indentation=setup.indentation,
-                             progress=(lambda m: progress(label + m)) if progress else None, settle=COARSE_SETTLE,
-                             normal=normal)
+                             progress=(lambda m: progress(label + m)) if progress else None,
+                             settle=options.coarse_settle, normal=normal, options=options)
     except ContactError:
         return None
 

@@ -9,32 +9,35 @@ from typing import Callable
 
 import numpy as np
 
-from ..friction import Friction, FrictionNotConverged
+from .model import Friction, FrictionNotConverged
 from .active_set import ActiveSetResult, LinearSolves, run_active_set
+from .options import SolverOptions
 from .system import RollingSetup, SetState
 
 __all__ = ["frictionless_start", "saturation_creepage", "coarse_start", "prolong", "coarse_forces", "continuation"]
 
 
 def frictionless_start(N0: np.ndarray, ell: np.ndarray, speed: float, friction: Friction,
-                       saturation: np.ndarray | float = 0.0) -> SetState:
+                       saturation: np.ndarray | float = 0.0,
+                       slip_creep: float = SolverOptions.slip_creep) -> SetState:
     """The frictionless contact (normal forces ``N0``, N), all in stick except (``Omega``
-    given) the nodes whose rigid creep ``|V - Omega l|`` exceeds ``V`` times 1 % and their
-    ``saturation`` creepage (-, :func:`saturation_creepage`), which slip along it with the
-    slip law's own linearisation ``k = |creep| / (mu N)`` (with ``k = 0`` the slip rows
+    given) the nodes whose rigid creep ``|V - Omega l|`` exceeds ``V`` times ``slip_creep``
+    (-, :class:`~bem.frictional.options.SolverOptions`) and their ``saturation`` creepage
+    (-, :func:`saturation_creepage`), which slip along it with the slip law's own
+    linearisation ``k = |creep| / (mu N)`` (with ``k = 0`` the slip rows
     would force ``w`` along ``e`` with a free perpendicular force, which at small ``mu`` is
     orders of magnitude above ``mu N`` and sends the iteration astray).
 
     Below saturation the contact rolls with a stick zone (Carter): a start in slip there
-    grew that zone a strip per iteration (issue-11 case, creepage 1 %, 16 x 16 level: 8
-    iterations from all slip, 6 from all stick)."""
+    grew that zone a strip per iteration (elastic paraboloid, creepage 0.01, 16 x 16 grid:
+    8 iterations from all slip, 6 from all stick)."""
     contact = N0 > 0
     stick = contact.copy()
     direction = np.zeros((N0.size, 2))
     slope = np.zeros(N0.size)
     if friction.omega is not None:
         creep = speed - friction.omega * ell
-        start_slip = contact & (np.abs(creep) > np.maximum(1e-2, saturation) * speed)
+        start_slip = contact & (np.abs(creep) > np.maximum(slip_creep, saturation) * speed)
         stick &= ~start_slip
         direction[start_slip, 0] = np.sign(creep[start_slip])
         slope[start_slip] = np.abs(creep[start_slip]) / (friction.mu * N0[start_slip])
@@ -62,12 +65,12 @@ def coarse_start(coarse_result, shape: tuple[int, int], N0: np.ndarray, mu: floa
     ``k = |w| / (mu N)`` for the largest of their slip speeds ``|w|``; in stick elsewhere.
 
     Taking any slipping neighbour moves the start's stick/slip border by up to one fine
-    node into the stick zone, where the converged border lies: the former rule (the
-    nearest coarse node, the upstream one between two) started with too much stick and
-    the fine iteration added the missing slip nodes a strip at a time. Measured (fine-grid
-    active-set iterations and GMRES iterations, the converged state unchanged): issue-11
-    case 61 x 61 6 -> 5 and 176 -> 139, 121 x 121 6 -> 5 and 227 -> 181; section 11 at
-    129 x 129 7 -> 7 and 225 -> 215. Widening the slip zone by one more fine node overshot
+    node into the stick zone, where the converged border lies: the nearest coarse node
+    (the upstream one between two) starts with too much stick and the fine iteration adds
+    the missing slip nodes a strip at a time. Measured (fine-grid active-set iterations and
+    GMRES iterations, nearest -> any, the converged state unchanged): elastic paraboloid,
+    creepage 0.01, 61 x 61 6 -> 5 and 176 -> 139, 121 x 121 6 -> 5 and 227 -> 181; section
+    11 at 129 x 129 7 -> 7 and 225 -> 215. Widening the slip zone by one more fine node overshot
     (61 x 61: 6 iterations, 165 and 205 GMRES).
     """
     res = coarse_result
@@ -126,8 +129,8 @@ def coarse_forces(coarse_result, shape: tuple[int, int], N0: np.ndarray, d0: flo
     enough to flip nodes that the coarse solution had right. Measured (section 11 at 513 x
     513, fine-grid active-set / GMRES iterations, the same converged state): from zero 9 /
     159; from these forces 7 / 133 (the slip misfit after the first solve 24 -> 1.1), and
-    7 / 121 with that solve asked :data:`~bem.frictional.active_set.START_REDUCTION` of
-    ``|b|`` (the other grids in its comment).
+    7 / 121 with that solve asked ``start_reduction`` of ``|b|``
+    (:class:`~bem.frictional.options.SolverOptions`; ``docs/frictional-solver.md``).
     """
     res = coarse_result
     contact = N0 > 0
@@ -138,26 +141,29 @@ def coarse_forces(coarse_result, shape: tuple[int, int], N0: np.ndarray, d0: flo
 
 
 def continuation(setup: RollingSetup, friction: Friction, N0: np.ndarray, solves: LinearSolves,
-                 progress: Callable[[str], None] | None, cause: Exception) -> ActiveSetResult:
+                 progress: Callable[[str], None] | None, cause: Exception,
+                 options: SolverOptions | None = None) -> ActiveSetResult:
     """Continuation in ``mu`` after a failed direct solve (loading modes with a free
-    ``Omega``): solve at ``mu 2^K`` (``K >= 1``, the smallest with ``mu 2^K >= 0.2``, where
-    a stick zone carries the moment), then halve ``mu`` down to the requested value,
+    ``Omega``): solve at ``mu 2^K`` (``K >= 1``, the smallest with ``mu 2^K >=``
+    ``options.continuation_mu``, 0.2 by default, where a stick zone carries the moment),
+    then halve ``mu`` down to the requested value,
     each solve starting from the previous sets and slip directions. At small ``mu`` the
     contact slips almost everywhere and the moment balance is met by one or a few stick
     nodes near the point where the slip reverses; the direct start (all stick) reaches
     the wrong ones and cycles, the continuation moves them there one step at a time.
     Raises :class:`FrictionNotConverged` naming the ``mu`` at which it stopped.
     """
+    o = SolverOptions() if options is None else options
     mu = friction.mu
-    K = max(1, math.ceil(math.log2(0.2 / mu))) if mu < 0.2 else 1
+    K = max(1, math.ceil(math.log2(o.continuation_mu / mu)))  # mu > 0 here
     ladder = [mu * 2.0**j for j in range(K, -1, -1)]
     if progress:
         progress(f"friction: direct solve failed ({cause}); continuation in mu from {ladder[0]:.4g}")
-    state = frictionless_start(N0, setup.ell, setup.speed, friction)
+    state = frictionless_start(N0, setup.ell, setup.speed, friction)  # Omega free: all stick
     history: list = []
     for m in ladder:
         try:
-            out = run_active_set(replace(setup, mu=m), replace(friction, mu=m), state, solves, progress)
+            out = run_active_set(replace(setup, mu=m), replace(friction, mu=m), state, solves, progress, options=o)
         except FrictionNotConverged as exc:
             raise FrictionNotConverged(
                 f"mode {friction.mode!r}, mu = {mu}: the direct solve failed ({cause}) and the "

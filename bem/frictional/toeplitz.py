@@ -8,9 +8,9 @@ of ``m`` contiguous contact nodes sees Toeplitz blocks: ``C_ww`` in its gap rows
 upwind-differenced ``a_x C_uu``, ``a_x C_vv`` in its stick rows. The inverse of a Toeplitz
 matrix is fixed by its first and last columns (two products of triangular Toeplitz
 matrices, ``O(m log m)`` by FFT), and Levinson's recursion gives those columns for every
-length up to the longest run at once (``O(M^2)``, once a grid); up to :data:`DENSE_UPTO`
-nodes the runs take the inverses themselves, built by bordering for the lengths present and
-applied one product per length (:class:`GroupedRuns`). Their use, the slip rows by
+length up to the longest run at once (``O(M^2)``, once a grid); up to ``dense_upto``
+nodes (:class:`~bem.frictional.options.SolverOptions`) the runs take the inverses
+themselves, built by bordering for the lengths present and applied one product per length (:class:`GroupedRuns`). Their use, the slip rows by
 Woodbury's identity: :mod:`bem.frictional.preconditioner`.
 """
 
@@ -22,22 +22,9 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 import scipy.fft as sfft
 
-__all__ = ["RowInverses", "GroupedRuns", "levinson", "second_thread", "DENSE_UPTO", "BATCHED_UPTO"]
+from .options import SolverOptions
 
-#: when the longest run (rounded up to 16 nodes) has at most this many nodes, the runs are
-#: solved by their inverses themselves (:meth:`RowInverses.inverse`, built for the lengths
-#: present, applied by :class:`GroupedRuns`), else by transforms. Measured (one
-#: application, the three blocks in single precision, against transforms): issue-11 case
-#: at 121 x 121 (``M = 112``, 101 runs of 31 lengths) 0.51 against 1.73 ms, section 11 at
-#: 129 x 129 (``M = 112``, 111 runs of 38 lengths) 0.48-0.54 against 1.2-1.4 ms; at 257 x 257
-#: (``M = 208``, 221 runs of 76 lengths) 4.4 against 4.7 ms, the inverses (20 MB) read from
-#: memory at each application, and twice the build (78 against 38 ms): transforms there
-DENSE_UPTO = 128
-#: :class:`GroupedRuns` pads every run's inverse to ``M x M`` and solves all runs in one
-#: batched product up to this ``M``, and groups the runs by length above it. Measured (issue-11
-#: case at 61 x 61, ``M = 61``, 51 runs of 16 lengths, the three blocks): 0.07-0.08 ms batched
-#: against 0.13-0.17 ms grouped
-BATCHED_UPTO = 64
+__all__ = ["RowInverses", "GroupedRuns", "levinson", "second_thread"]
 
 
 def levinson(t: np.ndarray, M: int) -> tuple[np.ndarray, np.ndarray]:
@@ -91,7 +78,7 @@ class RowInverses:
     column or row ``a``, ``J`` the reversal, ``Z`` the shift down by one). Two ways to apply
     them:
 
-    * ``dense`` (default: ``M <=`` :data:`DENSE_UPTO`): the inverses themselves, built for
+    * ``dense`` (default: ``M <= dense_upto``): the inverses themselves, built for
       the run lengths asked for (:meth:`inverse`, by bordering from the same columns,
       :meth:`_build`) and kept; the runs of one length are solved by one matrix product
       (:class:`GroupedRuns`);
@@ -110,16 +97,23 @@ class RowInverses:
         ``None`` when ``dense``.
     units : ndarray, shape ``(M, F // 2 + 1)``, or None
         The spectra of the unit vectors ``e_0 ... e_{M - 1}``; ``None`` when ``dense``.
+    batched_upto : int
+        :class:`GroupedRuns` pads every run to ``M x M`` up to this ``M``.
+
+    ``dense_upto`` and ``batched_upto``: :class:`~bem.frictional.options.SolverOptions`'
+    fields of those names.
     """
 
     BLOCKS = ("ww", "duu", "dvv")
 
-    def __init__(self, ops, M: int, dense: bool | None = None):
+    def __init__(self, ops, M: int, dense: bool | None = None, *, dense_upto: int = SolverOptions.dense_upto,
+                 batched_upto: int = SolverOptions.batched_upto):
         Ky, Kx = ops.grid.shape
+        self.batched_upto = batched_upto
         self.M = M = min(M, Kx)
         self.F = F = sfft.next_fast_len(2 * M - 1, real=True)
         ax = ops.grid.spacing_x
-        self.dense = M <= DENSE_UPTO if dense is None else dense
+        self.dense = M <= dense_upto if dense is None else dense
         # the three blocks' grid rows, in one Levinson recursion and one formula
         t = np.stack([(1.0 if name == "ww" else ax) * ops.tables[name][Ky - 1, Kx - M:Kx - 1 + M]
                       for name in self.BLOCKS])
@@ -164,7 +158,7 @@ class RowInverses:
         ``T_{n+1}^{-1}`` (:func:`levinson`; its last row is ``J x`` and its last diagonal
         entry ``x_0``, a Toeplitz inverse being persymmetric): one rank-one update a
         length, up to the longest asked for, ``O(m^3)`` in all (a few ms at ``m = 112``,
-        against 15-25 ms for the lengths of the issue-11 case at 121 x 121 one by one by
+        against 15-25 ms for the lengths of the elastic paraboloid at 121 x 121 one by one by
         Gohberg-Semencul's formula)."""
         todo = {int(n) for n in lengths} - set(self._inverses)
         if not todo:
@@ -256,11 +250,11 @@ class RowInverses:
 
 class GroupedRuns:
     """The dense inverses of :class:`RowInverses` for runs of ``lens`` nodes and ``blocks``:
-    for ``M <=`` :data:`BATCHED_UPTO` each run's inverse padded to ``M x M``, one batched
+    for ``M <=`` ``inv.batched_upto`` each run's inverse padded to ``M x M``, one batched
     product for all runs; above it the runs grouped by length, one matrix product per
     length present (``(B, k, n) x (B, n, n)`` for its ``k`` runs; a grid row and its mirror
     have one length, and a contact's rows take few lengths) instead of ``M x M`` per run.
-    Measured, the three blocks in single precision: issue-11 case at 121 x 121 (101 runs of
+    Measured, the three blocks in single precision: elastic paraboloid at 121 x 121 (101 runs of
     31 lengths, ``M = 112``) 0.51 ms grouped against 1.73 ms by transforms; at 61 x 61 (51
     runs of 16 lengths, ``M = 61``) 0.07 ms batched against 0.13-0.17 ms grouped."""
 
@@ -272,7 +266,7 @@ class GroupedRuns:
         groups = [(int(a), int(b), int(ordered[a]), inv._transposed(int(ordered[a]), blocks, dtype))
                   for a, b in zip(cuts[:-1], cuts[1:])]
         self.stack = None
-        if inv.M <= BATCHED_UPTO:
+        if inv.M <= inv.batched_upto:
             # every run's T^{-T}, padded (rows in the runs' own order)
             M = inv.M
             self.stack = np.zeros((len(blocks), lens.size, M, M), dtype)

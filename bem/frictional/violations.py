@@ -9,18 +9,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .options import SolverOptions
 from .system import RollingSetup
 
-__all__ = ["Violations", "measure", "next_sets", "next_directions", "SLOPE_FLOOR"]
-
-#: floor of the slip-law slope ``k``, in units of ``V / (mu N)``, while the slip misfit is
-#: 1 or more; it fades in proportion to the misfit below 1. Measured (``benchmarks/
-#: bem_friction_rolling.py``): with Newton's slope ``(e . w) / |S|`` and a fixed floor
-#: 1e-3 (the former rule) 14 active-set iterations on the issue-11 case at 61 x 61 and 12
-#: on section 11 at 129 x 129 (the misfit falls by a factor 3 an iteration); Newton's slope
-#: with the fading floor 6 and 11-13, and at 257 x 257 the misfit oscillated between 1
-#: and 14 for ten iterations; ``|w| / (mu N)`` with the fading floor 6 and 7.
-SLOPE_FLOOR = 1e-3
+__all__ = ["Violations", "measure", "next_sets", "next_directions"]
 
 
 @dataclass(frozen=True)
@@ -70,8 +62,13 @@ class Violations:
         return bool(self.drop.any() or self.add.any() or self.to_slip.any() or self.to_stick.any())
 
 
-def measure(setup: RollingSetup, contact, stick, N, Sx, Sy, d, om) -> Violations:
-    """The violations of the solution ``N, S_x, S_y`` (N), ``d`` (m), ``Omega`` (rad/s)."""
+def measure(setup: RollingSetup, contact, stick, N, Sx, Sy, d, om,
+            options: SolverOptions | None = None) -> Violations:
+    """The violations of the solution ``N, S_x, S_y`` (N), ``d`` (m), ``Omega`` (rad/s): a
+    stick node slips beyond ``mu N (1 + cone_tol)``, a node outside the contact joins once
+    it penetrates by more than ``penetration_tol |d|`` (``options``' fields, default
+    ``SolverOptions()``)."""
+    o = SolverOptions() if options is None else options
     ops, V, mu = setup.ops, setup.speed, setup.mu
     shape = ops.grid.shape
     fields = tuple(f.ravel() for f in ops.fields(N.reshape(shape), Sx.reshape(shape), Sy.reshape(shape)))
@@ -80,11 +77,11 @@ def measure(setup: RollingSetup, contact, stick, N, Sx, Sy, d, om) -> Violations
     wx, wy = V * (1 + sx) - om * setup.ell, V * sy
     scale = max(abs(d), 1e-300)
     drop = contact & (N <= 0)
-    add = ~contact & (h < -1e-12 * scale)
+    add = ~contact & (h < -o.penetration_tol * scale)
     smag = np.hypot(Sx, Sy)
     wmag = np.hypot(wx, wy)
     slip = contact & ~stick & ~drop
-    to_slip = contact & stick & ~drop & (smag > mu * N * (1 + 1e-10))
+    to_slip = contact & stick & ~drop & (smag > mu * N * (1 + o.cone_tol))
     wdot = wx * Sx + wy * Sy
     to_stick = slip & (wdot <= 0)
     slip &= ~to_stick
@@ -117,17 +114,20 @@ def next_sets(setup: RollingSetup, v: Violations, contact, stick, N, join_slip, 
     return new_c, new_s
 
 
-def next_directions(setup: RollingSetup, v: Violations, contact, new_slip, N, Sx, Sy):
-    """Slip directions ``e = S / |S|`` and slopes ``k`` (m/(s N)) of the next slip set."""
+def next_directions(setup: RollingSetup, v: Violations, contact, new_slip, N, Sx, Sy,
+                    slope_floor: float = SolverOptions.slope_floor):
+    """Slip directions ``e = S / |S|`` and slopes ``k`` (m/(s N)) of the next slip set, the
+    slopes floored at ``slope_floor min(1, misfit) V / (mu N)``
+    (:class:`~bem.frictional.options.SolverOptions`)."""
     V, mu = setup.speed, setup.mu
     with np.errstate(invalid="ignore", divide="ignore"):
         e_new = np.stack([Sx, Sy], 1) / v.smag[:, None]
         # the slope k = |w| / (mu N): Newton's (e . w) / |S| at the solution (where
         # e . w = |w| and |S| = mu N), and away from it a bound on the force's turn,
-        # |e_perp . S| = mu N |sin(e, w)|; floored at 1e-3 min(1, misfit) V / (mu N), so
-        # that a barely slipping node keeps its force near e while the slip law is far
-        # from settled (see SLOPE_FLOOR)
-        k_new = np.maximum(np.where(v.slip, v.wmag, 0.0), SLOPE_FLOOR * min(1.0, v.misfit) * V) / (mu * N)
+        # |e_perp . S| = mu N |sin(e, w)|; floored at slope_floor min(1, misfit) V / (mu N),
+        # so that a barely slipping node keeps its force near e while the slip law is far
+        # from settled
+        k_new = np.maximum(np.where(v.slip, v.wmag, 0.0), slope_floor * min(1.0, v.misfit) * V) / (mu * N)
         # a node joining the contact in slip slips along w, k = |w| / (mu N), N the
         # smallest contact force
         joining = new_slip & v.add

@@ -26,11 +26,12 @@ def check(settings: dict, problem: dict, where: str) -> None:
     check_table(settings, FIELDS, where)
 
 
-def _solve(problem_cfg: dict, settings: dict, spacing: float):
+def _solve(problem_cfg: dict, settings: dict, spacing: float, energy: bool = True):
     """(problem, result, seconds) of the BEM on one grid of node spacing ``spacing`` (m);
-    the truncation resolves the grid (``Nt = ceil(factor L / 2a)``)."""
+    the truncation resolves the grid (``Nt = ceil(factor L / 2a)``); ``energy``: compute
+    the layer's dissipation (a sum over every mode, seconds at ``Nt = 3000``)."""
+    import bem
     from bem.case import problem_from_config
-    from bem.problem import solve_frictionless
 
     period = settings.get("period", 0.2)
     nt = math.ceil(settings.get("truncation_factor", 1.0) * period / (2 * spacing) - 1e-9)
@@ -38,13 +39,20 @@ def _solve(problem_cfg: dict, settings: dict, spacing: float):
     cfg["grid"] = {"spacing": spacing, "period": period, "truncation": nt, "half_width": settings["half_width"]}
     problem, _ = problem_from_config(cfg)
     t = time.perf_counter()
-    res, _ = solve_frictionless(problem)
+    res = bem.solve(problem, energy=energy)
     return problem, res, time.perf_counter() - t
 
 
+def _energy_balance(res) -> dict:
+    """The rolling figures under the harness's names: ``dissipation`` (W, or W/m) and
+    ``rolling_resistance_slope``, the pressure's work rate over V (N, or N/m)."""
+    return {"dissipation": res.dissipation, "rolling_resistance_slope": res.pressure_power / res.speed}
+
+
 def run(problem_cfg: dict, settings: dict, spacing: float) -> Run:
-    """The BEM on one grid of node spacing ``spacing`` (m)."""
-    problem, res, seconds = _solve(problem_cfg, settings, spacing)
+    """The BEM on one grid of node spacing ``spacing`` (m): the contact's scalars, without
+    the dissipation."""
+    problem, res, seconds = _solve(problem_cfg, settings, spacing, energy=False)
     X, Y = problem.grid.coordinates()
     r = np.hypot(X, Y)
     scalars = {
@@ -61,24 +69,13 @@ def run_line(problem_cfg: dict, settings: dict, spacing: float) -> Run:
     """The plane-strain BEM (a line contact, per unit length) on one grid of node
     spacing ``spacing`` (m); ``Run.r`` holds the signed ``x`` of the nodes (m, ``x > 0``
     ahead) and the scalars are per unit length (N/m); a rolling one adds the power the
-    layer dissipates (W/m) and the pressure's work rate over V, ``sum F ds/dx`` (N/m)."""
+    layer dissipates (W/m) and the pressure's work rate over V (N/m)."""
     problem, res, seconds = _solve(problem_cfg, settings, spacing)
     scalars = {q: getattr(res, q) for q in ("rolling_resistance", "rolling_resistance_energy", "indentation",
                                             "leading_edge", "trailing_edge", "peak_pressure", "load")}
-    speed = problem.loading.speed
-    if speed > 0:
-        scalars["rolling_resistance_slope"] = _work_rate(problem.indenter.profile, res.force, np.asarray(res.x),
-                                                         spacing)
-        scalars["dissipation"] = res.rolling_resistance_energy * speed
+    if res.speed > 0:
+        scalars.update(_energy_balance(res))
     return Run("bem", spacing, scalars, np.asarray(res.x), np.asarray(res.pressure_profile), seconds)
-
-
-def _work_rate(profile, force, x, spacing: float) -> float:
-    """``sum F ds/dx``: the pressure's work rate over V (N, or N/m in plane strain), the
-    indenter's slope by a central difference of its ``profile(x)`` (m) at the nodes."""
-    step = 1e-3 * spacing
-    slope = (profile(x + step) - profile(x - step)) / (2 * step)
-    return float(np.sum(np.asarray(force).reshape(np.shape(slope)) * slope))
 
 
 def run_rolling(problem_cfg: dict, settings: dict, spacing: float) -> Run:
@@ -86,29 +83,14 @@ def run_rolling(problem_cfg: dict, settings: dict, spacing: float) -> Run:
     ``Run.r`` holds the signed ``x`` of the nodes on the line ``y = 0`` (m, ``x > 0``
     ahead) and ``Run.pressure`` their pressure; the scalars add the contact's trailing
     and leading edges on that line (m), the pressure centroid (m), the power the layer
-    dissipates (W, :func:`bem.energy.viscous_dissipation`, from the loss modulus) and the
-    pressure's work rate over V, ``sum F ds/dx`` (N, the indenter's exact slope by a
-    central difference), which the dissipation must balance."""
-    from bem.energy import viscous_dissipation
-    from bem.plane import edges_along
-
+    dissipates (W, from the loss modulus) and the pressure's work rate over V (N, with
+    the indenter's exact slope), which the dissipation must balance."""
     problem, res, seconds = _solve(problem_cfg, settings, spacing)
     g = problem.grid
     row = g.shape[0] // 2  # the grid is centred: a row of nodes on y = 0
-    trailing, leading = edges_along(g.x, g.spacing_x, res.force[row], res.gap[row])
-    zero = np.zeros_like(res.force)
-    X, Y = g.coordinates()
-    scalars = {
-        "rolling_resistance": res.rolling_resistance,
-        "indentation": res.indentation,
-        "peak_pressure": res.peak_pressure,
-        "load": res.load,
-        "trailing_edge": trailing,
-        "leading_edge": leading,
-        "pressure_centroid_x": res.pressure_centroid_x,
-        "rolling_resistance_slope": _work_rate(lambda x: problem.indenter.profile(x, Y), res.force, X, spacing),
-        "dissipation": viscous_dissipation(g, problem.layer, problem.loading.speed, -res.force, zero, zero),
-    }
+    scalars = {q: getattr(res, q) for q in ("rolling_resistance", "indentation", "peak_pressure", "load",
+                                            "trailing_edge", "leading_edge", "pressure_centroid_x")}
+    scalars.update(_energy_balance(res))
     return Run("bem", spacing, scalars, np.asarray(g.x), res.pressure[row], seconds, g, res.pressure)
 
 
