@@ -30,19 +30,40 @@ frictional solver (:mod:`bem.frictional`, on prepared operators
 solvers' linear solves go through :class:`bem.linear.LinearSolver`.
 """
 
-from .contact import ContactAtEdge, ContactError, ContactNotConverged
-from .driver import solve
-from .energy import viscous_dissipation
-from .frictional import Friction, FrictionalContact, FrictionNotConverged, LoadingUnreachable
-from .grid import Grid
-from .indenters import Cylinder, HeightMap, LineCylinder, Paraboloid, Sphere
-from .layer import Layer, surface_compliance, surface_compliance_expm
-from .materials import Elastic, MasterCurveTable, Prony, ThreeParameterSolid
-from .operator import ComplianceOperator
-from .plane import LineContact, LineGrid
-from .problem import Loading, Problem
-from .result import NormalContact
-from .spectral import influence_kernels, influence_kernels_direct
+import importlib
+
+# Names are imported on first use (PEP 562), so that ``bem --help`` answers without
+# loading numpy and scipy; ``from bem import solve`` works as with eager imports.
+_EXPORTS = {
+    "contact": ("ContactAtEdge", "ContactError", "ContactNotConverged"),
+    "driver": ("solve",),
+    "energy": ("viscous_dissipation",),
+    "frictional": ("Friction", "FrictionalContact", "FrictionNotConverged", "LoadingUnreachable"),
+    "grid": ("Grid",),
+    "indenters": ("Cylinder", "HeightMap", "LineCylinder", "Paraboloid", "Sphere"),
+    "layer": ("Layer", "surface_compliance", "surface_compliance_expm"),
+    "materials": ("Elastic", "MasterCurveTable", "Prony", "ThreeParameterSolid"),
+    "operator": ("ComplianceOperator",),
+    "plane": ("LineContact", "LineGrid"),
+    "problem": ("Loading", "Problem"),
+    "result": ("NormalContact",),
+    "spectral": ("influence_kernels", "influence_kernels_direct"),
+}
+_WHERE = {name: module for module, names in _EXPORTS.items() for name in names}
+
+
+def __getattr__(name: str):
+    if name in _WHERE:
+        value = getattr(importlib.import_module(f".{_WHERE[name]}", __name__), name)
+        globals()[name] = value
+        return value
+    try:  # a submodule, as ``bem.spectral`` after ``import bem``
+        return importlib.import_module(f".{name}", __name__)
+    except ModuleNotFoundError as exc:
+        if exc.name != f"{__name__}.{name}":
+            raise
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
 
 __all__ = [
     "solve",

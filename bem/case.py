@@ -63,7 +63,10 @@ def _indenter(sec: dict):
     if shape == "heightmap":
         return _height_map(sec["file"])
     if shape == "cylinder":
-        return Cylinder(sec["radius"], sec["length"])
+        try:
+            return Cylinder(sec["radius"], sec["length"], sec.get("edge_radius", 0.0), sec.get("crown_radius"))
+        except ValueError as exc:  # the rules between keys, which the schema checks one by one
+            raise casefile.CaseFileError(f"[indenter] {exc}") from None
     if shape == "line":
         return LineCylinder(sec["radius"])
     return {"sphere": Sphere, "paraboloid": Paraboloid}[shape](sec["radius"])
@@ -95,16 +98,37 @@ def _line_grid(g: dict, layer: Layer, indenter: LineCylinder, loading: Loading) 
     return LineGrid.centred(vals["spacing"], vals["period"], vals["truncation"], hw), auto
 
 
+def _dma_material(sec: dict):
+    """The :class:`bem.dma.case.CaseMaterial` of ``[material] model = "dma"``, else ``None``
+    (the file path is already absolute: :func:`casefile.validate` resolved it)."""
+    if sec["model"] != "dma":
+        return None
+    from .dma.case import dma_material
+
+    return dma_material(sec, Path("."))
+
+
+def _check_band(dma, loading: Loading, spacing_x: float, period_x: float) -> None:
+    """The frequency band of the case against the DMA data's range (:func:`bem.dma.case.check_band`)."""
+    if dma is not None:
+        from .dma.case import check_band
+
+        check_band(dma, loading.speed, spacing_x, period_x)
+
+
 def problem_from_config(config: dict) -> tuple[Problem, bool]:
     """The problem of a case (a dict of sections, checked here by :func:`casefile.validate`
     if it was not already); the flag tells whether the region was sized automatically.
 
     A line case (``[indenter] shape = "line"``: plane strain, load per unit length in N/m)
     gets a :class:`bem.plane.LineGrid`; ``_y`` grid keys and a ``[friction]`` section are
-    errors there."""
+    errors there. A ``[material] model = "dma"`` case is built at its service temperature
+    and its frequency band checked against the data (:mod:`bem.dma.case`)."""
     config = casefile.validate(config, "bem")
     lay, ld, g = config["layer"], config["loading"], config["grid"]
-    layer = Layer(lay["thickness"], material_from_config(config["material"], Path(".")), lay.get("density", 0.0))
+    dma = _dma_material(config["material"])
+    material = dma.material if dma else material_from_config(config["material"], Path("."))
+    layer = Layer(lay["thickness"], material, lay.get("density", 0.0))
     indenter = _indenter(config["indenter"])
     loading = Loading(ld.get("speed", 0.0), ld.get("load"), ld.get("indentation"))
     if isinstance(indenter, LineCylinder):
@@ -114,11 +138,13 @@ def problem_from_config(config: dict) -> tuple[Problem, bool]:
                 "frictional rolling is 3D only; remove the [friction] section or use a 3D indenter"
             )
         grid, auto = _line_grid(g, layer, indenter, loading)
+        _check_band(dma, loading, grid.spacing, grid.period)
         return Problem(layer, indenter, grid, loading), auto
     spacing = _pair(g, "spacing")
     auto = not {"half_width", "half_width_x", "half_width_y"} & set(g)
     hw_default = auto_half_width(layer, indenter, loading, max(spacing)) if auto else g.get("half_width")
     grid = Grid.centred(spacing, _pair(g, "period"), _pair(g, "truncation"), _pair(g, "half_width", hw_default))
+    _check_band(dma, loading, grid.spacing_x, grid.period_x)
     return Problem(layer, indenter, grid, loading), auto
 
 

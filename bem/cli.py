@@ -1,4 +1,7 @@
-"""``bem solve CASE.toml``: one contact problem from a case file."""
+"""``bem solve CASE.toml``: one contact problem from a case file.
+
+Exit status: 0 done; 1 the solve failed or an output file could not be written (the
+result is printed first); 2 bad input or usage."""
 
 from __future__ import annotations
 
@@ -8,14 +11,10 @@ import math
 import sys
 from pathlib import Path
 
-import numpy as np
-
 import casefile
 
-from .case import friction_from_config, problem_from_config, read_case
-from .contact import ContactError
-from .driver import solve
-from .plane import LineContact
+# numpy and the solver are imported in main(), after the arguments are parsed: --help
+# answers without loading them.
 
 
 def _strict(value):
@@ -30,10 +29,16 @@ def _strict(value):
 
 
 PLOT_SUFFIXES = (".png", ".pdf", ".svg")
+EXIT_CODES = ("exit status: 0 done; 1 the solve failed or --plot/--fields could not be written (the result is "
+              "printed first); 2 bad input or usage.")
 
 
 def _write_outputs(args, friction, result, summary) -> list[str]:
     """Write ``--fields`` and ``--plot``; returns the messages of those that failed."""
+    import numpy as np
+
+    from .plane import LineContact
+
     failed = []
     if args.fields:
         extra = {} if friction is None else {
@@ -64,19 +69,35 @@ def _write_outputs(args, friction, result, summary) -> list[str]:
 def main(argv: list[str] | None = None) -> int:
     """Exit status: 0 done, 1 the solve failed or an output could not be written (the
     result is printed first), 2 bad input or usage."""
-    parser = argparse.ArgumentParser(prog="bem", description=__doc__)
+    parser = argparse.ArgumentParser(prog="bem", description=__doc__.replace("``", ""))
     sub = parser.add_subparsers(dest="command", required=True)
-    s = sub.add_parser("solve", help="solve a case file")
-    s.add_argument("case", type=Path)
+    s = sub.add_parser("solve", help="solve a case file",
+                       description="Solve one contact problem with the BEM: stationary or rolling, with or without "
+                                   "friction (a [friction] section). Progress lines go to stderr, the result to stdout.",
+                       epilog=EXIT_CODES)
+    s.add_argument("case", type=Path, help="the case file (TOML, SI units; docs/case-files.md)")
     s.add_argument("--set", action="append", default=[], metavar="SECTION.KEY=VALUE",
                    help="override an entry of the case file (value parsed as TOML; a bare word for a "
-                        "string key)")
-    s.add_argument("--json", action="store_true", help="print one JSON object on stdout")
-    s.add_argument("--plot", type=Path, help="write the pressure map and y = 0 profile, or with friction the pressure "
-                   "map, tangential traction vectors and stick/slip map (PNG, PDF or SVG)")
-    s.add_argument("--fields", type=Path, help="save nodal coordinates and fields (NPZ)")
+                        "string key); repeatable; default: the file as written")
+    s.add_argument("--json", action="store_true", help="print one JSON object (SI units) on stdout; default: text")
+    s.add_argument("--plot", type=Path, metavar="FILE.png", help="write the pressure map and y = 0 profile, or with friction the pressure "
+                   "map, tangential traction vectors and stick/slip map (PNG, PDF or SVG); default: no plot")
+    s.add_argument("--fields", type=Path, metavar="FILE.npz",
+                   help="save nodal coordinates and fields (NPZ); default: not saved")
     s.add_argument("--quiet", action="store_true", help="no progress lines on stderr")
+    sub.add_parser("dma", add_help=False, help="DMA CSV to master curve, Prony fit and figures "
+                   "(bem dma --help; docs/materials.md)")
+    argv = sys.argv[1:] if argv is None else list(argv)
+    if argv[:1] == ["dma"]:  # its own parser, options included; matplotlib and the fit only when asked
+        from .dma.__main__ import main as dma_main
+
+        return dma_main(argv[1:], prog="bem dma")
     args = parser.parse_args(argv)
+
+    from .case import friction_from_config, problem_from_config, read_case
+    from .contact import ContactError
+    from .driver import solve
+    from .plane import LineContact
 
     def progress(line: str) -> None:
         if not args.quiet:

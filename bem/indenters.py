@@ -60,27 +60,88 @@ class Paraboloid:
         return np.asarray(X, float) / self.radius
 
 
+def _positive_length(name: str, value, rule: str = "> 0") -> None:
+    ok = isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
+    if not (ok and (value > 0 if rule == "> 0" else value >= 0)):
+        raise ValueError(f"{name} must be finite and {rule} m, got {value!r}")
+
+
 @dataclass(frozen=True)
 class Cylinder:
-    """Circular roller of radius ``radius`` (m), axis along ``y``, flat ends at
-    ``|y| = length / 2`` (m). The length must be finite: a roller longer than the candidate
-    region would touch its edge, which the 3D model cannot represent (its contact would be
-    a periodic line contact)."""
+    """Roller of radius ``radius`` R (m) and length ``length`` L (m), its axis along ``y``
+    through the centre: a surface of revolution about that axis whose radius ``rho(y) = R -
+    e(y)`` falls off towards the ends by the axial drop ``e(y)`` (m) of its profile.
+
+    ``edge_radius`` r_e (m, ``0 <= r_e <= L / 2``, default 0): flat (``e = 0``) over ``|y|
+    <= y_0 = L/2 - r_e``, then a circular arc of radius ``r_e`` tangent to the flat at
+    ``y_0`` and meeting the end face ``|y| = L/2`` at a right angle::
+
+        e(y) = r_e - sqrt(r_e^2 - s^2),   s = max(|y| - y_0, 0),
+
+    so ``e`` and its slope ``de/dy = s / sqrt(r_e^2 - s^2)`` are 0 on both sides of
+    ``y_0`` (the blend is tangent); ``r_e = 0`` is a flat-ended cylinder.
+    ``crown_radius`` R_c (m, ``>= L / 2``): instead, the generating line is one arc of
+    radius R_c over the whole length, ``e(y) = R_c - sqrt(R_c^2 - y^2)`` (``y^2 / 2 R_c``
+    to small slope); a crown and an edge radius together are refused.
+
+    The gap below the lowest point is exact for that surface, ``g = R - sqrt(rho(y)^2 -
+    x^2) = e(y) + x^2 / (rho + sqrt(rho^2 - x^2))`` (``x^2 / 2R + e(y)`` to small slope),
+    and ``+inf`` beyond the ends ``|y| > L/2`` (the roller is absent: the contact solver
+    never loads those nodes). With ``e = 0`` every row is the line contact's circle
+    (:class:`LineCylinder`). The length must be finite: a roller longer than the candidate
+    region would touch its edge, which the 3D model cannot represent (its contact would
+    be a periodic line contact).
+
+    Rolling: the roller turns about its own axis, so the rolling radius is R on every row
+    (:func:`bem.kinematics.rolling_radius`), unlike a sphere's ``sqrt(R^2 - y^2)``; the
+    ends' ``rho(y) = R - e(y)`` differs from R by at most the indentation there, a
+    relative ``e / R`` far below the strains ``~ a / R`` that set the slip. The rolling
+    arm is the paper's ``x / R`` (sec. 9).
+    """
 
     radius: float
     length: float
+    edge_radius: float = 0.0
+    crown_radius: float | None = None
 
     def __post_init__(self) -> None:
         _check_radius(self.radius)
-        if not (isinstance(self.length, (int, float)) and math.isfinite(self.length) and self.length > 0):
-            raise ValueError(f"length must be finite and > 0 m, got {self.length!r}")
+        _positive_length("length", self.length)
+        _positive_length("edge_radius", self.edge_radius, ">= 0")
+        if self.edge_radius > self.length / 2:
+            raise ValueError(f"edge_radius must be <= length / 2 = {self.length / 2!r} m (the two end "
+                             f"roundings meet at mid-length), got {self.edge_radius!r}")
+        if self.edge_radius >= self.radius:
+            raise ValueError(f"edge_radius must be < radius = {self.radius!r} m (an end rounding within the "
+                             f"roller), got {self.edge_radius!r}")
+        if self.crown_radius is not None:
+            _positive_length("crown_radius", self.crown_radius)
+            if self.edge_radius > 0:
+                raise ValueError("give crown_radius or edge_radius, not both: a crowned roller's profile is "
+                                 f"one arc end to end (got crown_radius = {self.crown_radius!r} m, "
+                                 f"edge_radius = {self.edge_radius!r} m)")
+            if self.crown_radius < self.length / 2:
+                raise ValueError(f"crown_radius must be >= length / 2 = {self.length / 2!r} m (an arc of radius "
+                                 f"R_c spans at most 2 R_c), got {self.crown_radius!r}")
+
+    def axial_drop(self, Y):
+        """``e(y)`` (m): how far the roller's surface lies above its lowest line at ``y``
+        (class docstring); ``+inf`` beyond the ends."""
+        a = np.abs(np.asarray(Y, float))
+        if self.crown_radius is not None:
+            rc, s = self.crown_radius, np.minimum(a, self.crown_radius)
+        else:
+            rc, s = self.edge_radius, np.clip(a - (self.length / 2 - self.edge_radius), 0.0, self.edge_radius)
+        e = s * s / (rc + np.sqrt(np.maximum(rc * rc - s * s, 0.0))) if rc > 0 else np.zeros_like(a)
+        return np.where(a <= self.length / 2, e, np.inf)
 
     def profile(self, X, Y):
         X, Y = np.broadcast_arrays(np.asarray(X, float), np.asarray(Y, float))
-        if np.any(X**2 >= self.radius**2):
+        e = self.axial_drop(Y)
+        rho = self.radius - np.where(np.isfinite(e), e, 0.0)  # the radius of the row
+        if np.any(X**2 >= rho**2):
             raise ValueError(f"the grid reaches beyond the cylinder's radius {self.radius} m: reduce grid.half_width")
-        g = X**2 / (self.radius + np.sqrt(self.radius**2 - X**2))
-        return np.where(np.abs(Y) <= self.length / 2, g, np.inf)
+        return np.where(np.isfinite(e), e + X**2 / (rho + np.sqrt(rho**2 - X**2)), np.inf)
 
     def rolling_arm(self, X, Y):
         return np.asarray(X, float) / self.radius

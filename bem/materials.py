@@ -347,6 +347,21 @@ _MODELS = {
 }
 
 
+def _dma(section: dict, base_dir) -> Material:
+    """A ``model = "dma"`` table checked against the case schema, then built at its
+    service temperature (``bem.dma`` imports this module, hence the late imports)."""
+    from casefile import CaseFileError, check_table
+    from casefile.schema import section as schema_section
+
+    from .dma.case import dma_material
+
+    spec = schema_section("material")
+    keys = spec.keys + spec.variants["dma"].keys
+    checked = check_table("[material]", section, keys, folder=base_dir, context=' for model = "dma"',
+                          error=CaseFileError)
+    return dma_material(checked, base_dir).material
+
+
 def material_from_config(section: dict, base_dir: pathlib.Path) -> Material:
     """Build a material from the ``[material]`` table of a TOML case file.
 
@@ -355,7 +370,11 @@ def material_from_config(section: dict, base_dir: pathlib.Path) -> Material:
     section : dict
         ``{"model": "elastic", "shear_modulus": ...}``, ``{"model": "three_parameter",
         "G0", "tau", "f"}``, ``{"model": "prony", "G_inf", "G", "tau"}`` or
-        ``{"model": "table", "file": ...}`` (SI units, see README "Case files").
+        ``{"model": "table", "file": ...}`` or ``{"model": "dma", "file": ...,
+        "reference_temperature": ..., "temperature": ...}`` (SI units, temperatures in K;
+        keys in ``docs/case-files.md``). A ``"dma"`` table gives the material at its
+        service temperature (:func:`bem.dma.case.dma_material`; the frequency band check
+        needs the grid and the speed, so :func:`bem.case.problem_from_config` makes it).
     base_dir : pathlib.Path
         Directory that a table's ``file`` is relative to (the case file's directory).
 
@@ -363,13 +382,17 @@ def material_from_config(section: dict, base_dir: pathlib.Path) -> Material:
     ------
     ValueError
         Unknown model, unknown or missing key (naming it and the allowed ones), or
-        invalid values.
+        invalid values; for ``"dma"`` a :class:`bem.dma.DMAError` naming the key or the
+        file's line.
     """
+    allowed = ", ".join((*_MODELS, "dma"))
     if "model" not in section:
-        raise ValueError(f"material.model is missing (allowed: {', '.join(_MODELS)})")
+        raise ValueError(f"material.model is missing (allowed: {allowed})")
     model = section["model"]
+    if model == "dma":
+        return _dma(section, base_dir)
     if model not in _MODELS:
-        raise ValueError(f"material.model must be one of {', '.join(_MODELS)}, got {model!r}")
+        raise ValueError(f"material.model must be one of {allowed}, got {model!r}")
     build, keys = _MODELS[model]
     for key in section:
         if key != "model" and key not in keys:

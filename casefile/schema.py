@@ -20,6 +20,8 @@ __all__ = ["KINDS", "TOOLS", "RULES", "BOTH", "Key", "Variant", "Section", "SCHE
 TOOLS = {"bem": "bem solve", "fem": "fem-reference solve"}
 #: the readers of a key, variant or section that names none
 BOTH = ("bem", "fem")
+#: the BEM alone
+BEM = ("bem",)
 
 
 @dataclass(frozen=True)
@@ -89,7 +91,7 @@ SCHEMA: tuple = (
     Section(
         "material", "the incompressible linear viscoelastic solid (SI units, G* at omega in rad/s)",
         keys=(Key("model", "string", "-", "material model", required=True,
-                  choices=("elastic", "three_parameter", "prony", "table")),),
+                  choices=("elastic", "three_parameter", "prony", "table", "dma")),),
         required_by=BOTH,
         selector="model",
         variants={
@@ -112,6 +114,41 @@ SCHEMA: tuple = (
                     Key("file", "path", "-", "CSV with columns omega (rad/s), G' (Pa), G'' (Pa); "
                         "header line optional", required=True),
                 )),
+            "dma": Variant(
+                "dma", "DMA isotherms shifted to a master curve and run at a service temperature "
+                "(docs/materials.md; fem-reference: paste the series that bem dma FILE --print-material "
+                "prints as model = \"prony\")", (
+                    Key("file", "path", "-", "DMA CSV: temperature, frequency, storage and loss moduli "
+                        "with their units in the header (docs/materials.md)", BEM, required=True),
+                    Key("reference_temperature", "number", "K", "T_ref of the master curve and of the shift "
+                        "law", BEM, required=True, rule=">0"),
+                    Key("temperature", "number", "K", "service temperature T: G*(omega; T) = b_T "
+                        "G*_ref(a_T omega)", BEM, rule=">0", default_doc="reference_temperature"),
+                    Key("shift_law", "string", "-", "time-temperature shift law; fitted to the isotherms' "
+                        "overlap unless its constants are given", BEM, default="wlf", choices=("wlf", "arrhenius")),
+                    Key("C1", "number", "-", "WLF C1 (with C2): log10 a_T = -C1 (T - T_ref) / (C2 + T - T_ref)",
+                        BEM, rule=">0", default_doc="fitted"),
+                    Key("C2", "number", "K", "WLF C2 (with C1); the law holds only above T_ref - C2", BEM,
+                        rule=">0", default_doc="fitted"),
+                    Key("activation_energy", "number", "J/mol", "Arrhenius E_a: log10 a_T = E_a / (R ln 10) "
+                        "(1/T - 1/T_ref)", BEM, rule=">0", default_doc="fitted"),
+                    Key("vertical", "string", "-", "vertical shift b_T: T rho / (T_ref rho_ref) from the CSV's "
+                        "density_kg_m3 column, or fitted by overlap", BEM, choices=("density", "fit"),
+                        default_doc="none (b_T = 1)"),
+                    Key("form", "string", "-", "what the solve uses: the passive Prony series fitted at T_ref "
+                        "and shifted (smooth, Kramers-Kronig consistent, tends to the rubbery and glassy "
+                        "plateaus outside the data), or the shifted points binned into a table "
+                        "(the data as measured, unphysical beyond them)", BEM, default="prony",
+                        choices=("prony", "table")),
+                    Key("terms_per_decade", "number", "-", "Prony relaxation times per decade of the data "
+                        "(form = \"prony\")", BEM, default=2.0, rule=">0"),
+                    Key("fit_tolerance", "number", "-", "largest relative error of G' and G'' the Prony fit "
+                        "may leave at a data point (form = \"prony\")", BEM, rule=">0",
+                        default_doc="none (bem dma reports the errors)"),
+                    Key("extrapolate", "bool", "-", "accept a case whose frequency band omega = nu_x V "
+                        "(2 pi V / L_x to pi V / spacing_x) leaves the data's range at temperature", BEM,
+                        default_doc="false: such a case is an error"),
+                ), readers=BEM),
         },
     ),
     Section(
@@ -123,10 +160,16 @@ SCHEMA: tuple = (
         variants={
             "sphere": Variant("sphere", "exact sphere, paper eq. 13", (_radius(),)),
             "paraboloid": Variant("paraboloid", "s = r^2 / (2 R)", (_radius(),)),
-            "cylinder": Variant("cylinder", "roller with its axis along y", (
-                _radius(("bem",)),
-                Key("length", "number", "m", "the roller's length along y", ("bem",), required=True, rule=">0"),
-            ), readers=("bem",)),
+            "cylinder": Variant("cylinder", "roller of finite length with its axis along y: flat, rounded or "
+                                "crowned ends (fem-reference: 3D rolling, [fem] model = \"3d\")", (
+                _radius(),
+                Key("length", "number", "m", "the roller's length L along y", required=True, rule=">0"),
+                Key("edge_radius", "number", "m", "radius r_e of the rounding that blends the cylinder "
+                    "tangentially into each end face, <= length / 2 and < radius; 0 is a flat-ended "
+                    "cylinder", default=0.0, rule=">=0"),
+                Key("crown_radius", "number", "m", "crowned roller instead: the generating line is one arc "
+                    "of radius R_c >= length / 2 (drop y^2 / 2 R_c); not with edge_radius", rule=">0"),
+            )),
             "line": Variant("line", "plane strain: a rigid cylinder of radius R with its axis along y, in "
                             "line contact; [loading] load is then per unit length along y (N/m)",
                             (_radius(),)),

@@ -82,13 +82,34 @@ a_est (m) is the smaller of the Hertz radius and the thin-layer asymptote
 :class:`FemReferenceError`.
 """
 
-from .errors import (ContactNotConvergedError, ContactZoneError, FemReferenceError,
-                     InputError, LinearSolverError, MeshError, MissingDependencyError)
-from .materials import ElasticMaterial, PronyMaterial, ThreeParameterMaterial
-from .problem import ContactProblem, FemSettings, Indenter, Layer, Loading
-from .rolling import RollingResult, SphereRollingResult
-from .driver import solve
-from .stationary import ContactResult
+import importlib
+
+# Names are imported on first use (PEP 562), so that ``fem-reference --help`` answers
+# without loading numpy, scipy and scikit-fem.
+_EXPORTS = {
+    "errors": ("ContactNotConvergedError", "ContactZoneError", "FemReferenceError", "InputError",
+               "LinearSolverError", "MeshError", "MissingDependencyError"),
+    "materials": ("ElasticMaterial", "PronyMaterial", "ThreeParameterMaterial"),
+    "problem": ("ContactProblem", "FemSettings", "Indenter", "Layer", "Loading"),
+    "rolling": ("RollingResult", "SphereRollingResult"),
+    "driver": ("solve",),
+    "stationary": ("ContactResult",),
+}
+_WHERE = {name: module for module, names in _EXPORTS.items() for name in names}
+
+
+def __getattr__(name: str):
+    if name in _WHERE:
+        value = getattr(importlib.import_module(f".{_WHERE[name]}", __name__), name)
+        globals()[name] = value
+        return value
+    try:  # a submodule, as ``fem_reference.mesh`` after ``import fem_reference``
+        return importlib.import_module(f".{name}", __name__)
+    except ModuleNotFoundError as exc:
+        if exc.name != f"{__name__}.{name}":
+            raise
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
 
 __all__ = [
     "solve", "ContactProblem", "Layer", "ElasticMaterial", "PronyMaterial",

@@ -6,7 +6,8 @@ this reference cannot solve, such as ``[friction]``, are errors; the BEM's ``[gr
 ignored); this module turns the checked dict into the FEM's own objects: ``[layer]
 thickness`` and ``density``, ``[material]`` ``model = "elastic"`` (``shear_modulus``),
 ``"three_parameter"`` (``G0``, ``tau``, ``f``) or ``"prony"`` (``G_inf``, ``G``, ``tau``),
-``[indenter] shape`` ("sphere" | "paraboloid" | "line") and ``radius``, ``[loading]
+``[indenter] shape`` ("sphere" | "paraboloid" | "line" | "cylinder") and ``radius`` (a
+cylinder's ``length``, ``edge_radius``, ``crown_radius``), ``[loading]
 load`` or ``indentation`` and ``speed`` (> 0 for a line, or for a sphere with ``[fem]
 model = "3d"``), and the ``[fem]``
 section. A measured master curve (``model = "table"``) has no time-domain form and is
@@ -46,11 +47,19 @@ def problem_from_dict(data: Dict[str, Any]) -> ContactProblem:
     return ContactProblem(
         layer=Layer(thickness=data["layer"]["thickness"], density=data["layer"].get("density", 0.0)),
         material=material_from_dict(data["material"]),
-        indenter=Indenter(shape=data["indenter"]["shape"], radius=data["indenter"]["radius"]),
+        indenter=_indenter(data["indenter"]),
         loading=Loading(load=loading.get("load"), indentation=loading.get("indentation"),
                         speed=loading.get("speed", 0.0)),
         fem=FemSettings(**data.get("fem", {})),
     )
+
+
+def _indenter(table: Dict[str, Any]) -> Indenter:
+    """The ``[indenter]`` table; a cylinder's ``length``, ``edge_radius``, ``crown_radius``."""
+    if table["shape"] != "cylinder":
+        return Indenter(shape=table["shape"], radius=table["radius"])
+    return Indenter(shape="cylinder", radius=table["radius"], length=table["length"],
+                    edge_radius=table.get("edge_radius", 0.0), crown_radius=table.get("crown_radius"))
 
 
 def material_from_dict(table: Dict[str, Any]):

@@ -23,8 +23,7 @@ from typing import List, Optional
 
 import casefile
 
-from .case import load_case
-from .errors import FemReferenceError, InputError
+from .errors import FemReferenceError, InputError  # light; the model is imported in main(), after parsing
 
 __all__ = ["main"]
 
@@ -39,26 +38,35 @@ far_size 3.33e-3, 73k unknowns, -1.3% in 45 s; with grading 0.15 and far_size 2.
 and 6.7 GB (docs/derivations.md section 9)."""
 
 
+EXIT_CODES = """\
+exit status: 0 done; 1 the solve failed or --plot/--vtu could not be written (the
+result is printed first); 2 bad input or usage."""
+
+
 def _parser() -> argparse.ArgumentParser:
-    ap = argparse.ArgumentParser(prog="fem-reference", description=__doc__.splitlines()[0])
+    ap = argparse.ArgumentParser(prog="fem-reference", description=__doc__.splitlines()[0].replace("``", ""),
+                                 epilog=EXIT_CODES)
     sub = ap.add_subparsers(dest="command", required=True)
     s = sub.add_parser("solve", help="solve a case file (frictionless: stationary elastic, or "
                        "steady rolling of a line indenter in plane strain or of a sphere in 3d)",
-                       epilog=DEFAULTS_3D, formatter_class=argparse.RawDescriptionHelpFormatter)
+                       epilog=f"{EXIT_CODES}\n\n{DEFAULTS_3D}", formatter_class=argparse.RawDescriptionHelpFormatter)
     s.add_argument("case", help="TOML case file (docs/case-files.md)")
-    s.add_argument("--json", action="store_true", help="print the result as one JSON object")
+    s.add_argument("--json", action="store_true", help="print the result as one JSON object (SI units); "
+                   "default: text")
     s.add_argument("--set", action="append", default=[], metavar="SECTION.KEY=VALUE",
-                   help="override an entry; the value is parsed as TOML")
+                   help="override an entry; the value is parsed as TOML; repeatable; default: the file "
+                        "as written")
     s.add_argument("--plot", metavar="FILE.png", help="pressure profile and deformed surface (a "
-                   "rolling sphere: also the pressure map; profiles on y = 0)")
+                   "rolling sphere: also the pressure map; profiles on y = 0); default: no plot")
     s.add_argument("--vtu", metavar="FILE.vtu", help="export the mesh with displacement, pressure "
-                   "and viscous strains (meshio; a rolling sphere: the half layer y >= 0)")
+                   "and viscous strains (meshio; a rolling sphere: the half layer y >= 0); default: none")
     s.add_argument("--quiet", action="store_true", help="no progress lines on stderr")
     return ap
 
 
 def main(argv: Optional[List[str]] = None) -> int:
     args = _parser().parse_args(argv)
+    from .case import load_case
     from .output import plot_result, write_vtu
     from .rolling.result import RollingResult
     from .driver import solve

@@ -58,26 +58,59 @@ class Layer:
 @dataclass(frozen=True)
 class Indenter:
     """Rigid indenter of radius ``radius`` (m): axisymmetric, ``shape`` "sphere"
-    (exact, paper eq. 13) or "paraboloid"; or "line", a rigid circular cylinder with
-    its axis along y in plane strain (exact circle s = R - sqrt(R^2 - x^2); the load is
-    then per unit length, N/m).
+    (exact, paper eq. 13) or "paraboloid"; "line", a rigid circular cylinder with its
+    axis along y in plane strain (exact circle s = R - sqrt(R^2 - x^2); the load is then
+    per unit length, N/m); or "cylinder", a roller of ``length`` L (m) with its axis along
+    y, rolling in the 3d model.
+
+    The roller is the surface of revolution about its axis of radius rho(y) = R - e(y):
+    e = 0 on |y| <= L/2 - r_e and e = r_e - sqrt(r_e^2 - (|y| - L/2 + r_e)^2) beyond (an
+    arc of ``edge_radius`` r_e, m, tangent to the flat and square to the end face; 0 <=
+    r_e <= L/2, r_e < R), or with ``crown_radius`` R_c (m, >= L/2) one arc end to end, e =
+    R_c - sqrt(R_c^2 - y^2). Its height above its lowest point is s = R - sqrt(rho(y)^2 -
+    x^2) on |y| <= L/2; the 3d model's candidate zone ends at |y| = L/2.
     """
 
     shape: str
     radius: float
+    length: Optional[float] = None
+    edge_radius: float = 0.0
+    crown_radius: Optional[float] = None
 
-    SHAPES = ("sphere", "paraboloid", "line")
+    SHAPES = ("sphere", "paraboloid", "line", "cylinder")
 
     def __post_init__(self):
         if self.shape not in self.SHAPES:
             raise InputError(f"indenter.shape must be one of {self.SHAPES}, got {self.shape!r}")
         _positive("indenter.radius", self.radius, "m")
+        if self.shape != "cylinder":
+            if self.length is not None or self.edge_radius or self.crown_radius is not None:
+                raise InputError(f"indenter.length, edge_radius and crown_radius belong to a cylinder, "
+                                 f"not to indenter.shape = {self.shape!r}")
+            return
+        _positive("indenter.length", self.length, "m")
+        r_e = self.edge_radius
+        if isinstance(r_e, bool) or not isinstance(r_e, (int, float)) or not math.isfinite(r_e) or r_e < 0:
+            raise InputError(f"indenter.edge_radius must be a number >= 0 m, got {r_e!r}")
+        if r_e > self.length / 2:
+            raise InputError(f"indenter.edge_radius must be <= indenter.length / 2 = {self.length / 2!r} m "
+                             f"(the two end roundings meet at mid-length), got {r_e!r}")
+        if r_e >= self.radius:
+            raise InputError(f"indenter.edge_radius must be < indenter.radius = {self.radius!r} m, got {r_e!r}")
+        if self.crown_radius is not None:
+            _positive("indenter.crown_radius", self.crown_radius, "m")
+            if r_e > 0:
+                raise InputError("give indenter.crown_radius or indenter.edge_radius, not both: a crowned "
+                                 "roller's profile is one arc end to end")
+            if self.crown_radius < self.length / 2:
+                raise InputError(f"indenter.crown_radius must be >= indenter.length / 2 = "
+                                 f"{self.length / 2!r} m, got {self.crown_radius!r}")
 
     def profile(self, r):
         """Height s(r) (m) of the indenter above its lowest point at radius r (m) (at
-        abscissa x = r for a line contact).
+        abscissa x = r for a line contact, and for a cylinder on its mid-plane y = 0).
 
-        Sphere and line: s = R - sqrt(R^2 - r^2) (paper eq. 13 with z_c = R);
+        Sphere, line and cylinder: s = R - sqrt(R^2 - r^2) (paper eq. 13 with z_c = R);
         paraboloid: s = r^2 / (2 R).
         """
         r = np.asarray(r, dtype=float)
@@ -87,6 +120,36 @@ class Indenter:
         if np.any(np.abs(r) >= R):
             raise InputError(f"sphere profile asked at |r| >= indenter.radius = {R} m")
         return r * r / (R + np.sqrt(R * R - r * r))  # = R - sqrt(R^2 - r^2), no cancellation
+
+    def axial_drop(self, y):
+        """e(y) (m) of a cylinder (class docstring), for |y| <= L/2."""
+        a = np.abs(np.asarray(y, dtype=float))
+        if self.crown_radius is not None:
+            rc, s = self.crown_radius, np.minimum(a, self.crown_radius)
+        else:
+            rc = self.edge_radius
+            s = np.clip(a - (0.5 * self.length - rc), 0.0, rc)
+        if rc == 0:
+            return np.zeros_like(a)
+        return s * s / (rc + np.sqrt(np.maximum(rc * rc - s * s, 0.0)))
+
+    def surface(self, x, y):
+        """Height s(x, y) (m) above the lowest point of a sphere (R - sqrt(R^2 - x^2 -
+        y^2)) or a cylinder (class docstring) at the point (x, y) (m) of the surface."""
+        x, y = np.asarray(x, float), np.asarray(y, float)
+        if self.shape == "cylinder":
+            e = self.axial_drop(y)
+            rho = self.radius - e
+            return e + x * x / (rho + np.sqrt(rho * rho - x * x))
+        r2 = x * x + y * y
+        return r2 / (self.radius + np.sqrt(self.radius ** 2 - r2))
+
+    def slope(self, x, y):
+        """ds/dx (-) at (x, y) (m): x / sqrt(rho^2 - x^2), rho = sqrt(R^2 - y^2) for a
+        sphere, R - e(y) for a cylinder."""
+        x, y = np.asarray(x, float), np.asarray(y, float)
+        rho2 = (self.radius - self.axial_drop(y)) ** 2 if self.shape == "cylinder" else self.radius ** 2 - y * y
+        return x / np.sqrt(rho2 - x * x)
 
 
 @dataclass(frozen=True)
@@ -218,9 +281,10 @@ class ContactProblem:
 
     A sphere or a paraboloid is stationary elastic indentation (axisymmetric or 3D);
     a line indenter is plane strain and may roll (``loading.speed`` > 0) on an elastic,
-    Prony or three-parameter layer; a sphere rolls (``loading.speed`` > 0) in the 3d
-    model (half box y >= 0, ``fem.upstream``, ``fem.downstream`` and ``fem.domain_radius``
-    the lateral extent). ``fem.model`` left unset is filled in from the indenter.
+    Prony or three-parameter layer; a sphere rolls (``loading.speed`` > 0), and a
+    cylinder (a roller of finite length) only rolls, in the 3d model (half box y >= 0,
+    ``fem.upstream``, ``fem.downstream`` and ``fem.domain_radius`` the lateral extent).
+    ``fem.model`` left unset is filled in from the indenter ("3d" for a cylinder).
 
     Raises
     ------
@@ -245,7 +309,8 @@ class ContactProblem:
                     " or ".join(c.__name__ for c in cls)
                 raise InputError(f"{name} must be a {kind}, got {getattr(self, name)!r}")
         line = self.indenter.shape == "line"
-        model = self.fem.model or ("plane_strain" if line else "axisymmetric")
+        roller = self.indenter.shape == "cylinder"
+        model = self.fem.model or ("plane_strain" if line else "3d" if roller else "axisymmetric")
         if line != (model == "plane_strain"):
             raise InputError(f"fem.model = {model!r} does not fit indenter.shape = "
                              f"{self.indenter.shape!r}: a line indenter is solved in plane strain "
@@ -253,6 +318,13 @@ class ContactProblem:
                              "by the axisymmetric or 3d model")
         if model != self.fem.model:
             object.__setattr__(self, "fem", replace(self.fem, model=model))
+        if roller and (model != "3d" or not self.loading.speed > 0):
+            raise InputError(
+                f"fem-reference cannot solve [indenter] shape = \"cylinder\" with fem.model = {model!r} and "
+                f"loading.speed = {self.loading.speed!r}: a roller is solved by the 3d rolling model only "
+                f"(fem.model = \"3d\", loading.speed > 0); for "
+                "a stationary roller give an elastic material, density 0 and any speed (its solution then "
+                "does not depend on the speed)")
         rolling_3d = model == "3d" and self.loading.speed > 0
         unused = (("domain_radius", "upstream and downstream"),) if line else () if rolling_3d else \
             (("upstream", "domain_radius"), ("downstream", "domain_radius"))
@@ -279,9 +351,9 @@ class ContactProblem:
                     f"\"{self.indenter.shape}\": the axisymmetric and 3d models are stationary "
                     "and elastic; viscoelastic rolling is solved in plane strain (shape = \"line\") "
                     "or, for a sphere at [loading] speed > 0, by [fem] model = \"3d\"")
-        if rolling_3d and self.indenter.shape != "sphere":
+        if rolling_3d and self.indenter.shape not in ("sphere", "cylinder"):
             raise InputError(f"indenter.shape = {self.indenter.shape!r}: the 3d rolling model "
-                             "(fem.model = \"3d\", loading.speed > 0) takes a sphere only")
+                             "(fem.model = \"3d\", loading.speed > 0) takes a sphere or a cylinder")
         rho, V = self.layer.density, self.loading.speed
         if rho > 0 and V > 0:
             c_s = self.shear_wave_speed

@@ -14,16 +14,38 @@ makes on the sweeps' results. SI units throughout.
     write_report(sweep, report.rows, "out/sweeps/fig7a")
 """
 
-from .engine import RunReport, connect, run_sweep
-from .fits import Fit, fit_law, fit_power, fit_two_exponential
-from .kernels import KernelCache, fit_kernels, kernel_key
-from .point import solve_point
-from .report import curves, write_report
-from .spec import Axis, Point, Sweep, SweepError, expand, read_sweep
-from .table import RESULTS
+import importlib
+
+# Names are imported on first use (PEP 562), so that ``sweep --help`` answers without
+# loading numpy, scipy, Dask and the BEM.
+_EXPORTS = {
+    "engine": ("RunReport", "connect", "run_sweep"),
+    "fits": ("Fit", "fit_law", "fit_power", "fit_two_exponential"),
+    "kernels": ("KernelCache", "fit_kernels", "kernel_key"),
+    "point": ("solve_point",),
+    "report": ("curves", "write_report"),
+    "integrity": ("code_version",),
+    "spec": ("MAX_POINTS", "Axis", "Point", "Sweep", "SweepError", "count", "expand", "read_sweep"),
+    "table": ("RESULTS",),
+}
+_WHERE = {name: module for module, names in _EXPORTS.items() for name in names}
+
+
+def __getattr__(name: str):
+    if name in _WHERE:
+        value = getattr(importlib.import_module(f".{_WHERE[name]}", __name__), name)
+        globals()[name] = value
+        return value
+    try:  # a submodule, as ``sweeps.paper`` after ``import sweeps``
+        return importlib.import_module(f".{name}", __name__)
+    except ModuleNotFoundError as exc:
+        if exc.name != f"{__name__}.{name}":
+            raise
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
 
 __all__ = [
-    "Axis", "Fit", "KernelCache", "Point", "RESULTS", "RunReport", "Sweep", "SweepError", "connect", "curves",
-    "expand", "fit_kernels", "fit_law", "fit_power", "fit_two_exponential", "kernel_key", "read_sweep",
-    "run_sweep", "solve_point", "write_report",
+    "Axis", "Fit", "KernelCache", "MAX_POINTS", "Point", "RESULTS", "RunReport", "Sweep", "SweepError",
+    "code_version", "connect", "count", "curves", "expand", "fit_kernels", "fit_law", "fit_power",
+    "fit_two_exponential", "kernel_key", "read_sweep", "run_sweep", "solve_point", "write_report",
 ]

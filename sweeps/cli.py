@@ -1,10 +1,12 @@
 """``sweep FILE.toml``: run a parametric study of BEM cases on Dask.
 
 Writes, in ``--out`` (default ``out/sweeps/<name>``): ``results.csv`` (one row per point,
-as they arrive), ``summary.json`` (counts and times), ``plot-<result>.png`` and
-``fits.csv`` / ``fits.json``. Exit status: 0 every point solved, 1 some point failed (its
-row says why), 2 bad input (the sweep file, a point's case, an unreachable scheduler),
-130 interrupted (the finished rows are kept; run again to compute the rest).
+as they arrive), ``summary.json`` (counts and times), ``sweep.json`` (whose folder it is),
+``plot-<result>.png`` and ``fits.csv`` / ``fits.json``. Exit status: 0 every point
+solved, 1 some point failed (its row says why), 2 bad input (the sweep file, a point's
+case, more points than ``MAX_POINTS``, an unreachable scheduler, another sweep's folder
+without ``--overwrite``, a damaged table with ``--no-cache``), 130 interrupted (the
+finished rows are kept; run again to compute the rest).
 """
 
 from __future__ import annotations
@@ -25,7 +27,8 @@ def _check(sweep, points) -> None:
     for p in points:
         try:
             problem, _ = problem_from_config(p.config)
-            keys.setdefault(kernel_key(p.config, problem), []).append(p.index)
+            plane = getattr(problem, "plane_strain", False)  # a line contact forms its own 1D kernels
+            keys.setdefault(f"plane-{p.index}" if plane else kernel_key(p.config, problem), []).append(p.index)
         except ValueError as exc:
             print(f"  point {p.index} {p.values}: {exc}")
     axes = ", ".join(f"{a.key} ({len(a.values)})" for a in sweep.axes)
@@ -49,6 +52,9 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--no-cache", action="store_true", help="neither read nor write the cache")
     parser.add_argument("--keep-failed", action="store_true",
                         help="keep the points an earlier run recorded as failed (default: compute them again)")
+    parser.add_argument("--overwrite", action="store_true",
+                        help="replace what --out holds (another sweep's table, or this sweep's earlier run) "
+                             "instead of refusing or resuming")
     parser.add_argument("--no-plots", action="store_true", help="no PNG plots")
     parser.add_argument("--check", action="store_true",
                         help="check the sweep file and every point, count the kernel sets, run nothing")
@@ -74,7 +80,8 @@ def main(argv: list[str] | None = None) -> int:
     cache = None if args.no_cache else (args.cache or Path("out") / "sweeps" / "kernel-cache")
     try:
         report = run_sweep(sweep, out, scheduler=args.scheduler, workers=args.workers, cache=cache,
-                           timeout=args.timeout, keep_failed=args.keep_failed, stream=None if args.quiet else sys.stderr)
+                           timeout=args.timeout, keep_failed=args.keep_failed, overwrite=args.overwrite,
+                           stream=None if args.quiet else sys.stderr)
     except SweepError as exc:
         print(f"sweep: error: {exc}", file=sys.stderr)
         return 2

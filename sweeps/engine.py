@@ -8,14 +8,15 @@ that set (:func:`sweeps.point.solve_point`), so the points of a group run in par
 every worker while the compliance is formed once. The client saves each new kernel set
 to the cache, appends each row to the table as it arrives and draws the progress bar. A
 rerun reads the table back and computes only the points it lacks or that failed (a
-changed point has a new ``point_id`` and is computed again).
+changed point has a new ``point_id`` and is computed again). Nothing an earlier run or
+the cache left is used unchecked (:mod:`sweeps.resume`, :mod:`sweeps.integrity`): a
+stale or damaged entry is computed again with a line saying so, a damaged table without a
+cache to rebuild it from and another sweep's folder are refused.
 """
 
 from __future__ import annotations
 
 import json
-import logging
-import os
 import sys
 import time
 from dataclasses import asdict, dataclass, field
@@ -24,16 +25,15 @@ from pathlib import Path
 
 from bem.case import friction_from_config, problem_from_config
 
+from .cluster import connect
 from .kernels import KernelCache, PointCache, group_points, form_kernels, kernel_key
 from .point import solve_point
 from .progress import Progress, duration
-from .spec import Point, Sweep, SweepError, expand
-from .table import ResultTable, columns, read_rows
+from .resume import SUMMARY, TABLE, claim, prepare
+from .spec import Sweep, SweepError, expand
+from .table import ResultTable, columns
 
 __all__ = ["RunReport", "run_sweep", "connect"]
-
-TABLE = "results.csv"
-SUMMARY = "summary.json"
 
 
 @dataclass
@@ -64,100 +64,82 @@ class RunReport:
     overhead_seconds: float = 0.0
     table: str = ""
     errors: list = field(default_factory=list)
+    notes: list = field(default_factory=list)
     rows: list = field(default_factory=list, repr=False)
 
 
-def connect(scheduler: str | None = None, workers: int | None = None, processes: bool = True,
-            timeout: float = 10.0):
-    """A ``distributed.Client``: to ``scheduler`` (``tcp://host:port`` or a scheduler file
-    ``*.json``), else to a new local cluster of ``workers`` (default: the machine's cores)
-    single-threaded workers (processes, or threads with ``processes=False``).
-
-    Raises
-    ------
-    SweepError
-        The scheduler does not answer within ``timeout`` seconds.
-    """
-    from distributed import Client, LocalCluster
-
-    if scheduler:
-        try:
-            if scheduler.endswith(".json"):
-                return Client(scheduler_file=scheduler, timeout=f"{timeout}s")
-            return Client(scheduler, timeout=f"{timeout}s")
-        except (OSError, TimeoutError, ValueError) as exc:
-            raise SweepError(f"--scheduler {scheduler}: no Dask scheduler answers there within {timeout:g} s "
-                             f"({type(exc).__name__}: {exc}); start one with `dask scheduler` and "
-                             "`dask worker ADDRESS`, or leave out --scheduler to run on a local cluster") from None
-    n = workers or os.cpu_count() or 1
-    cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=processes, dashboard_address=":0",
-                           silence_logs=logging.ERROR)
-    return Client(cluster)
-
-
-def _prior(out: Path, header: list[str], points: list[Point], keep_failed: bool) -> dict:
-    """Rows of an earlier run of the same points, by index."""
-    ids = {p.index: p.point_id for p in points}
-    keep = {}
-    for row in read_rows(out / TABLE, header):
-        i = int(row["index"])
-        if ids.get(i) == row["point_id"] and (row["status"] == "ok" or keep_failed):
-            keep[i] = row
-    return keep
+def _caches(cache) -> tuple:
+    if cache is None:
+        return None, None
+    try:
+        return KernelCache(Path(cache) / "kernels"), PointCache(Path(cache) / "points")
+    except OSError as exc:
+        raise SweepError(f"--cache {cache}: cannot be used as the cache folder ({type(exc).__name__}: {exc})") from None
 
 
 def run_sweep(sweep: Sweep, out: str | Path, *, scheduler: str | None = None, workers: int | None = None,
               cache: str | Path | None = None, processes: bool = True, keep_failed: bool = False,
-              timeout: float = 10.0,
-              stream=sys.stderr, client=None) -> RunReport:
-    """Run ``sweep``, writing ``results.csv`` and ``summary.json`` in ``out``.
+              overwrite: bool = False, timeout: float = 10.0, stream=sys.stderr, client=None) -> RunReport:
+    """Run ``sweep``, writing ``results.csv``, ``summary.json`` and ``sweep.json`` in ``out``.
 
     Parameters
     ----------
     sweep : Sweep
         From :func:`sweeps.spec.read_sweep`.
     out : path
-        Output folder; a table already there from the same sweep is resumed.
+        Output folder; a table already there from the same sweep is checked and resumed
+        (:mod:`sweeps.resume`).
     scheduler : str, optional
         Address of a running Dask scheduler (or its scheduler file), waited for
-        ``timeout`` seconds; default a local cluster of ``workers`` processes (threads
-        with ``processes=False``).
+        ``timeout`` seconds (:func:`sweeps.cluster.connect`); default a local cluster of
+        ``workers`` processes (threads with ``processes=False``).
     cache : path, optional
         Cache folder (``None``: no cache): ``kernels/`` holds kernel sets by group key,
-        ``points/`` finished points by ``point_id`` (any sweep's).
+        ``points/`` finished points by ``point_id`` (any sweep's), each with its checksum
+        and the code version that made it.
     keep_failed : bool
         Keep the points an earlier run recorded as failed (by default they are computed
         again, with the finished ones kept).
+    overwrite : bool
+        Replace what ``out`` holds (another sweep's table, refused otherwise, or this
+        sweep's earlier run, resumed otherwise) and start afresh there.
     stream : file or None
-        Progress and messages (stderr).
+        Progress and messages (stderr); with ``None`` no progress, but the lines that say
+        a cached or tabulated result is computed again still go to stderr.
     client : distributed.Client, optional
         Use this client (not closed here) instead of connecting.
 
     Raises
     ------
     SweepError
-        A point that breaks the case schema, or a scheduler that does not answer: before
-        anything runs.
+        A point that breaks the case schema, a scheduler that does not answer, another
+        sweep's folder, a damaged table with no cache to rebuild it from, a cache folder
+        that cannot be used: before anything runs.
     """
     from distributed import as_completed
 
     points = expand(sweep)
     out = Path(out)
     header = columns([a.key for a in sweep.axes])
-    prior = _prior(out, header, points, keep_failed)
-    store = KernelCache(Path(cache) / "kernels") if cache is not None else None
-    done = PointCache(Path(cache) / "points") if cache is not None else None
-    for p in points:
-        row = done.load(p.point_id) if done and p.index not in prior else None
-        if row is not None and row.get("status") == "ok":
-            prior[p.index] = {**row, "index": p.index, "point_id": p.point_id, **p.values}
+    store, done = _caches(cache)
+    prior, notes, remove = prepare(sweep, points, out, header, done, keep_failed, overwrite)
+    say_to = stream if stream is not None else sys.stderr
+
+    def say(text: str) -> None:
+        notes.append(text)
+        say_to.write(("\r\033[K" if getattr(say_to, "isatty", lambda: False)() else "") + text + "\n")
+        say_to.flush()
+
+    for text in notes:
+        say_to.write(text + "\n")
     todo = [p for p in points if p.index not in prior]
-    report = RunReport(sweep.name, len(points), resumed=len(prior), table=str(out / TABLE))
+    report = RunReport(sweep.name, len(points), resumed=len(prior), table=str(out / TABLE), notes=notes)
     own_client = client is None
     t_start = time.perf_counter()
     if todo and client is None:
         client = connect(scheduler, workers, processes, timeout)
     try:
+        claim(sweep, out, remove)
         if client is not None:
             report.workers = len(client.scheduler_info().get("workers", {}))
             report.scheduler = client.scheduler.address if scheduler else "local"
@@ -187,7 +169,9 @@ def run_sweep(sweep: Sweep, out: str | Path, *, scheduler: str | None = None, wo
         by_index = {p.index: p for p in todo}
         futures, kernel_tasks = [], {}
         for key, group in groups.items():
-            cached = store.load(group) if store is not None and not key.startswith("plane-") else None
+            cached, why = store.load(group) if store is not None and not key.startswith("plane-") else (None, "")
+            if why:
+                say(f"sweep {sweep.name}: kernel set {key}: {why}; formed again")
             if key.startswith("plane-"):
                 kfut = None
                 report.groups -= 1
@@ -216,7 +200,10 @@ def run_sweep(sweep: Sweep, out: str | Path, *, scheduler: str | None = None, wo
                     report.kernels_formed += 1
                     report.kernel_seconds += seconds
                     if store is not None:
-                        store.save(key, kernels)
+                        try:
+                            store.save(key, kernels)
+                        except OSError as exc:
+                            say(f"sweep {sweep.name}: kernel set {key} not cached ({type(exc).__name__}: {exc})")
                     continue
                 try:
                     row = fut.result()
@@ -227,7 +214,10 @@ def run_sweep(sweep: Sweep, out: str | Path, *, scheduler: str | None = None, wo
                 row.update(point_id=by_index[i].point_id, kernel_key=keys.get(i, ""), **axis_values[i])
                 table.add(row)
                 if done and row["status"] == "ok":
-                    done.save(row["point_id"], {k: v for k, v in row.items() if k not in axis_values[i]})
+                    try:
+                        done.save(row["point_id"], {k: v for k, v in row.items() if k not in axis_values[i]})
+                    except OSError as exc:
+                        say(f"sweep {sweep.name}: point {i} not cached ({type(exc).__name__}: {exc})")
                 report.computed += 1
                 report.failed += row["status"] != "ok"
                 report.point_seconds += row.get("seconds") or 0.0

@@ -7,7 +7,8 @@ conclusion). A kernel table holds the influence of every node offset
 ``K[dy + K_y - 1, dx + K_x - 1]``, so the table of a larger region contains the table of
 a smaller one as its central block: one kernel set, formed for the widest region of a
 group, serves every point of the group (an automatically sized region grows with the
-load). The cache stores one ``.npz`` per group key.
+load). The cache stores one ``.npz`` per group key, with the checksums and the code
+version that let a damaged or stale set be refused (:class:`KernelCache`).
 """
 
 from __future__ import annotations
@@ -24,6 +25,8 @@ import numpy as np
 from bem.grid import Grid
 from bem.problem import Problem, compute_kernels
 from bem.spectral import BLOCKS
+
+from .integrity import array_digest, code_version, open_envelope, point_envelope
 
 __all__ = ["kernel_key", "KernelGroup", "group_points", "fit_kernels", "form_kernels", "KernelCache", "PointCache"]
 
@@ -120,9 +123,12 @@ def form_kernels(problem: Problem, blocks: tuple) -> tuple[dict, float]:
 class KernelCache:
     """Kernel sets on disk, one ``<key>.npz`` per group under ``folder``.
 
-    A cached set serves a request when it holds the blocks and at least the node counts
-    asked for. Writes go through a temporary file and a rename, so an interrupted run
-    never leaves a truncated entry.
+    Each file holds the tables and ``__meta__``: the group key, the version of the code
+    that formed them (:func:`sweeps.integrity.code_version`) and the SHA-256 of each
+    table's dtype, shape and bytes. A cached set serves a request only when all of these
+    match and it holds the blocks and at least the node counts asked for; otherwise
+    :meth:`load` says why and the set is formed again. Writes go through a temporary file
+    and a rename, so an interrupted run never leaves a truncated entry.
     """
 
     def __init__(self, folder: str | Path):
@@ -132,29 +138,54 @@ class KernelCache:
     def path(self, key: str) -> Path:
         return self.folder / f"{key}.npz"
 
-    def load(self, group: KernelGroup) -> dict | None:
-        """The cached tables of ``group``, or ``None`` when absent or too small."""
+    def load(self, group: KernelGroup) -> tuple[dict | None, str]:
+        """``(tables, "")`` for ``group``, or ``(None, why)``: ``why`` is empty when the set
+        is absent, else the reason it cannot be used."""
         path = self.path(group.key)
         if not path.exists():
-            return None
+            return None, ""
+        if not path.is_file():
+            return None, f"{path} is not a file"
         try:
-            with np.load(path) as data:
-                if not set(group.blocks) <= set(data.files):
-                    return None
+            with np.load(path, allow_pickle=False) as data:
+                if "__meta__" not in data.files:
+                    return None, f"{path} carries no checksums (written by another version of the code)"
+                meta = json.loads(str(data["__meta__"]))
+                if meta.get("key") != group.key:
+                    return None, f"{path} holds the set of group {meta.get('key')!r}"
+                if meta.get("code") != code_version():
+                    return None, f"{path} was formed by another version of the code ({meta.get('code')})"
+                sums = meta.get("sha256")
+                if not isinstance(sums, dict):
+                    return None, f"{path} carries no checksums of its tables"
+                missing = [b for b in group.blocks if b not in sums or b not in data.files]
+                if missing:
+                    return None, f"{path} lacks the block(s) {', '.join(missing)}"
                 tables = {b: data[b] for b in group.blocks}
-        except (OSError, ValueError, KeyError):
-            return None
+        except Exception as exc:  # a damaged file: zip, npy or JSON errors of every kind
+            return None, f"{path} cannot be read ({type(exc).__name__}: {exc})"
+        for b, table in tables.items():
+            if array_digest(table) != sums[b]:
+                return None, f"{path}: table {b!r} does not match its checksum (edited or damaged)"
         try:
-            return fit_kernels(tables, group.problem.grid)
-        except ValueError:
-            return None
+            return fit_kernels(tables, group.problem.grid), ""
+        except ValueError as exc:  # a narrower region than this group needs: formed again, wider
+            return None, f"{path}: {exc}"
 
     def save(self, key: str, kernels: dict) -> None:
+        """Store a set (through a temporary file and a rename).
+
+        Raises
+        ------
+        OSError
+            The entry cannot be written (e.g. a folder in its place).
+        """
+        meta = {"key": key, "code": code_version(), "sha256": {b: array_digest(t) for b, t in kernels.items()}}
         fd, tmp = tempfile.mkstemp(dir=self.folder, suffix=".npz.tmp")
         os.close(fd)
         try:
             with open(tmp, "wb") as fh:
-                np.savez(fh, **kernels)
+                np.savez(fh, __meta__=np.array(json.dumps(meta)), **kernels)
             os.replace(tmp, self.path(key))
         finally:
             if os.path.exists(tmp):
@@ -165,23 +196,44 @@ class KernelCache:
 
 
 class PointCache:
-    """Finished points on disk, one ``<point_id>.json`` (the row's results) under
-    ``folder``: a point of another sweep with the same checked case is not solved again
-    (figures 8 and 9, tables 2 and 3 share points)."""
+    """Finished points on disk, one ``<point_id>.json`` under ``folder``: a point of another
+    sweep with the same checked case is not solved again (figures 8 and 9, tables 2 and 3
+    share points). Each entry holds the row, the code version and the row's checksum
+    (:func:`sweeps.integrity.point_envelope`); :meth:`load` refuses any other content and
+    says why."""
 
     def __init__(self, folder: str | Path):
         self.folder = Path(folder)
         self.folder.mkdir(parents=True, exist_ok=True)
 
-    def load(self, point_id: str) -> dict | None:
+    def path(self, point_id: str) -> Path:
+        return self.folder / f"{point_id}.json"
+
+    def load(self, point_id: str) -> tuple[dict | None, str]:
+        """``(row, "")``, or ``(None, why)``: ``why`` is empty when the point is absent."""
+        path = self.path(point_id)
+        if not path.exists():
+            return None, ""
         try:
-            return json.loads((self.folder / f"{point_id}.json").read_text())
-        except (OSError, ValueError):
-            return None
+            data = json.loads(path.read_bytes())
+        except (OSError, ValueError) as exc:
+            return None, f"{path} cannot be read ({type(exc).__name__}: {exc})"
+        row, why = open_envelope(data, point_id)
+        return row, (f"{path} {why}" if why else "")
 
     def save(self, point_id: str, row: dict) -> None:
-        fd, tmp = tempfile.mkstemp(dir=self.folder, suffix=".json.tmp")
-        with os.fdopen(fd, "w") as fh:
-            json.dump(row, fh)
-        os.replace(tmp, self.folder / f"{point_id}.json")
+        """Store a finished point (through a temporary file and a rename).
 
+        Raises
+        ------
+        OSError
+            The entry cannot be written (e.g. a folder in its place).
+        """
+        fd, tmp = tempfile.mkstemp(dir=self.folder, suffix=".json.tmp")
+        try:
+            with os.fdopen(fd, "w") as fh:
+                json.dump(point_envelope(point_id, row), fh)
+            os.replace(tmp, self.path(point_id))
+        finally:
+            if os.path.exists(tmp):
+                os.unlink(tmp)

@@ -30,9 +30,11 @@ file's (SI).
 from __future__ import annotations
 
 import copy
+import functools
 import hashlib
 import itertools
 import json
+import re
 import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -43,10 +45,15 @@ import casefile
 from casefile.schema import section
 from casefile.validation import InputError, Key, check_table, check_value, did_you_mean
 
+from .integrity import input_files
 from .table import RESULTS
 
-__all__ = ["SweepError", "Axis", "FitRequest", "Sweep", "Point", "read_sweep", "expand", "LAWS",
-           "TOP", "AXIS", "OUTPUT", "FIT"]
+__all__ = ["SweepError", "Axis", "FitRequest", "Sweep", "Point", "read_sweep", "expand", "count", "LAWS",
+           "MAX_POINTS", "TOP", "AXIS", "OUTPUT", "FIT"]
+
+#: the most points a sweep expands to (a larger one is refused before any point is built:
+#: checking a point costs about a millisecond, so this bounds ``--check`` to seconds)
+MAX_POINTS = 10_000
 
 #: the fitted laws (``sweeps.fits``)
 LAWS = ("power", "two_exponential")
@@ -140,6 +147,9 @@ def _axis(where: str, table: dict) -> Axis:
         raise SweepError(f"{where}: give either values = [...] or start, stop and num")
     if "values" in table:
         values = table["values"]
+        if isinstance(values, list) and len(values) > MAX_POINTS:
+            raise SweepError(f"{where}: {len(values)} values; a sweep takes at most {MAX_POINTS} points "
+                             "(MAX_POINTS): split it into several sweep files")
         axis = Axis(key, tuple(values))  # the key's own check first
         if key != "case" and {"number", "integer"} & axis.kinds:  # the range rules: when the points are checked
             unit = section(key.partition(".")[0]).all_keys(key.partition(".")[2])[0].unit
@@ -149,6 +159,9 @@ def _axis(where: str, table: dict) -> Axis:
     if missing:
         raise SweepError(f"{where}: a range needs start, stop and num; missing {', '.join(missing)}")
     start, stop, num, scale = table["start"], table["stop"], table["num"], table.get("scale", "linear")
+    if num > MAX_POINTS:
+        raise SweepError(f"{where}: num = {num} values; a sweep takes at most {MAX_POINTS} points (MAX_POINTS): "
+                         "split it into several sweep files")
     if scale == "log" and not (start > 0 and stop > 0):
         raise SweepError(f"{where}: a log range needs start > 0 and stop > 0, got {start!r}, {stop!r}")
     if num > 1 and start == stop:
@@ -223,14 +236,41 @@ class Point:
     values: dict
     config: dict
 
-    @property
+    @functools.cached_property
     def point_id(self) -> str:
-        """A hash of the checked case: two points with the same physics and grid share it."""
-        return hashlib.sha256(json.dumps(self.config, sort_keys=True).encode()).hexdigest()[:16]
+        """A hash of the checked case and of the content of the files it names (a
+        master-curve table, a height map): two points with the same physics and grid
+        share it; an edited input file makes a new point."""
+        what = {"case": self.config, "files": input_files(self.config)}
+        return hashlib.sha256(json.dumps(what, sort_keys=True).encode()).hexdigest()[:16]
 
     @property
     def friction(self) -> bool:
         return "friction" in self.config
+
+
+def _check_name(src: str, name: str) -> None:
+    """A name is a relative path that stays inside the output root (``out/sweeps/NAME``)."""
+    parts = name.replace("\\", "/").split("/")
+    if (not name.strip() or Path(name).is_absolute() or name.startswith(("/", "\\")) or re.match(r"[A-Za-z]:", name)
+            or ".." in parts or any(ord(c) < 32 for c in name)):
+        raise SweepError(f"{src}: name = {name!r} must be a relative name inside the output folder "
+                         "(not absolute, no '..', no drive, no control characters)")
+
+
+def count(sweep: Sweep) -> int:
+    """The number of points of ``sweep``, from its axes' lengths (no point is built)."""
+    n = 1
+    varied = [len(a.values) for a in sweep.axes if a.key != "case"]
+    cases = [len(a.values) for a in sweep.axes if a.key == "case"]
+    if sweep.combine == "zip" and varied:
+        n = varied[0]
+    else:
+        for v in varied:
+            n *= v
+    for c in cases:
+        n *= c
+    return n
 
 
 def read_sweep(path: str | Path) -> Sweep:
@@ -239,8 +279,9 @@ def read_sweep(path: str | Path) -> Sweep:
     Raises
     ------
     SweepError
-        Unknown top-level key, an axis on an unknown key, an empty or non-numeric range,
-        a base case that is missing or unreadable.
+        Unknown top-level key, an axis on an unknown key, an empty, non-numeric or
+        too long range, a base case that is missing or unreadable, a ``name`` that is
+        absolute or climbs out of the output folder (``..``).
     """
     path = Path(path)
     if not path.is_file():
@@ -273,8 +314,10 @@ def read_sweep(path: str | Path) -> Sweep:
     plot = out.get("plot", ["rolling_resistance"])
     fits = [check_table(f"{src} [[fit]] #{i + 1}", f, FIT, error=SweepError) for i, f in enumerate(data.get("fit", []))]
     fits = [FitRequest(f["law"], f.get("y", "rolling_resistance")) for f in fits]
+    name = data.get("name", path.stem)
+    _check_name(src, name)
     return Sweep(
-        name=data.get("name", path.stem), source=src, cases=tuple(cases), overrides=tuple(overrides),
+        name=name, source=src, cases=tuple(cases), overrides=tuple(overrides),
         axes=tuple(axes), combine=data.get("combine", "product"), x=out.get("x", ""), plot=tuple(plot),
         fits=tuple(fits), raw_cases=raw,
     )
@@ -297,8 +340,14 @@ def expand(sweep: Sweep) -> list[Point]:
     Raises
     ------
     SweepError
-        The first point whose case breaks the schema, naming the point and the key.
+        More than :data:`MAX_POINTS` points (counted before any is built), or the first
+        point whose case breaks the schema, naming the point and the key.
     """
+    n = count(sweep)
+    if n > MAX_POINTS:
+        sizes = " x ".join(f"{a.key} ({len(a.values)})" for a in sweep.axes)
+        raise SweepError(f"{sweep.source}: {n} points ({sizes}, combined as {sweep.combine}); a sweep takes at most "
+                         f"{MAX_POINTS} points (MAX_POINTS): split it into several sweep files")
     points = []
     for index, values in enumerate(_combinations(sweep)):
         case = values.get("case", sweep.cases[0])

@@ -174,8 +174,9 @@ _BLOCK_GMSH = textwrap.dedent(f"""
                 loaded.append(info.name)
     state = dict(loaded=loaded, attempts=list(attempts),
                  fem_reference_imported="fem_reference" in sys.modules)
+    import fem_reference  # its names load on first use
     try:
-        import fem_reference
+        fem_reference.solve
     except ImportError as exc:
         state.update(error=str(exc), cause=repr(exc.__cause__))
     print(json.dumps(state))

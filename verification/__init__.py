@@ -14,7 +14,23 @@ The flow, one module each, imports one way (top to bottom):
 - :mod:`.cli`: ``verify``.
 """
 
-from . import analytic
-from .results import CaseResult, Gate, Level, Run, Table
+import importlib
+
+# Imported on first use (PEP 562), so that ``verify --help`` answers without loading scipy.
+_RESULTS = ("CaseResult", "Gate", "Level", "Run", "Table")
+
+
+def __getattr__(name: str):
+    if name in _RESULTS:
+        value = getattr(importlib.import_module(".results", __name__), name)
+        globals()[name] = value
+        return value
+    try:  # a submodule, as ``verification.analytic`` after ``import verification``
+        return importlib.import_module(f".{name}", __name__)
+    except ModuleNotFoundError as exc:
+        if exc.name != f"{__name__}.{name}":
+            raise
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
 
 __all__ = ["analytic", "CaseResult", "Gate", "Level", "Run", "Table"]

@@ -1,20 +1,31 @@
 """``verify``: run the verification suite and write its report.
 
-Exit codes: 0 every gate passes; 1 a gate failed (or a case could not run); 2 bad input
-or usage (a case file that breaks the schema, an unknown case or method, an unwritable
-``--out``): nothing was solved; 130 interrupted (Ctrl-C or SIGTERM): the previous report
-is left as it was.
+Exit codes: 0 every gate passes; 1 a gate failed (or a case or a method could not run:
+a method that raises, exits or returns what the gates cannot use fails its gates, with
+the reason, in the report); 2 bad input or usage (a case file that breaks the schema, an
+unknown case or method, a malformed results file or baseline, an ``--out`` that is not
+the report's to replace): nothing was solved; 130 interrupted (Ctrl-C or SIGTERM): the
+previous report is left as it was.
+
+``--out`` is replaced only when it is a report ``verify`` wrote (it carries the marker
+file :data:`verification.out_folder.MARKER`) or empty; see :mod:`verification.out_folder`.
 """
 
 from __future__ import annotations
 
 import argparse
+import json
+import math
 import signal
 import sys
 from pathlib import Path
 
-from .report import ReportError, check_junit, check_out, drift, load_baseline, summary_line, write_report
-from .runner import CASES_DIR, CaseError, list_cases, load_cases, run_case
+from .out_folder import FORMAT, MARKER, OutFolderError, marker_format
+from .out_folder import check as check_out_folder
+
+# The report and the runner (numpy, scipy, the solvers) are imported inside the functions,
+# after the arguments are parsed: --help answers without loading them.
+CASES_DIR = Path(__file__).resolve().parent / "cases"  # verification.runner.CASES_DIR
 
 EXIT_PASS, EXIT_FAIL, EXIT_INPUT, EXIT_INTERRUPTED = 0, 1, 2, 130
 
@@ -28,13 +39,22 @@ def _on_sigterm(signum, frame):
 
 
 def _parser() -> argparse.ArgumentParser:
-    p = argparse.ArgumentParser(prog="verify", description=__doc__.split("\n\n")[0],
-                                epilog="Exit codes: 0 pass, 1 a gate failed, 2 bad input, 130 interrupted.")
-    p.add_argument("--quick", action="store_true", help="the fast subset CI runs (cases with quick = true)")
-    p.add_argument("--out", type=Path, default=Path("verification-report"), help="report folder")
+    p = argparse.ArgumentParser(prog="verify", description=__doc__.split("\n\n")[0].replace("``", ""),
+                                epilog="Exit codes: 0 every gate passes; 1 a gate failed or a case could not run; 2 bad "
+                                       "input or usage (nothing solved); 130 interrupted (the previous report kept).")
+    p.add_argument("--quick", action="store_true", help="a fast subset: the cases with quick = true, some with fewer cells or speeds "
+                   "(default: every case)")
+    p.add_argument("--out", type=Path, default=Path("verification-report"), metavar="DIR",
+                   help="report folder; replaced only when it is an earlier report (or empty) "
+                        "(default: verification-report)")
+    p.add_argument("--overwrite", action="store_true",
+                   help="let --out name a folder that is not a report: its content is kept beside the report, "
+                        "renamed OUT.kept-DATE-TIME (never the working folder or the cases folder); "
+                        "let --junit replace a file that is not a JUnit file verify wrote")
     p.add_argument("--case", action="append", default=[], metavar="NAME",
-                   help="run only these cases (names or .toml paths); repeatable")
-    p.add_argument("--cases-dir", type=Path, default=CASES_DIR, help="folder of case files")
+                   help="run only these cases (names or .toml paths); repeatable (default: every case)")
+    p.add_argument("--cases-dir", type=Path, default=CASES_DIR, metavar="DIR",
+                   help="folder of case files (default: the installed verification/cases)")
     p.add_argument("--method", action="append", default=[], metavar="NAME[=SPEC]",
                    help="hold another method to every gate the BEM is held to: an installed plugin NAME, "
                         "NAME=package.module:function, or NAME=FOLDER of results files (<case>.json); repeatable")
@@ -48,6 +68,8 @@ def _parser() -> argparse.ArgumentParser:
 
 
 def _select(args) -> list[Path]:
+    from .runner import CaseError, list_cases
+
     if args.case:
         chosen = []
         by_name = None
@@ -69,8 +91,59 @@ def _select(args) -> list[Path]:
     return list_cases(args.cases_dir)
 
 
+def _baseline(path: Path) -> dict:
+    """``--baseline``: a metrics.json of this report format, every gate with its key,
+    verdict, error and tolerance; a :class:`ReportError` naming the file and the field."""
+    from .report import ReportError, load_baseline
+
+    gates = load_baseline(path)  # unreadable, not JSON, no cases, gates or keys
+    fmt = marker_format(path.parent)
+    if fmt is not None and fmt != FORMAT:
+        raise ReportError(f"--baseline {str(path)!r}: its folder's {MARKER} says report format "
+                          f"{fmt or 'unreadable'}; this verify reads format {FORMAT}. Make a new baseline with it")
+    doc = json.loads(path.read_text())
+    cases = doc.get("cases") if isinstance(doc, dict) else None
+    if not isinstance(cases, list):
+        raise ReportError(f"--baseline {str(path)!r}: 'cases' must be a list (not a metrics.json of verify)")
+    for i, case in enumerate(cases):
+        for j, g in enumerate(case["gates"] if isinstance(case, dict) else [None]):
+            where = f"--baseline {str(path)!r} cases[{i}].gates[{j}]"
+            if not isinstance(g, dict):
+                raise ReportError(f"{where}: a gate is a table, got {g!r}")
+            for key in ("key", "verdict", "error", "tolerance"):
+                if key not in g:
+                    raise ReportError(f"{where}: no {key!r} (a metrics.json of another version of verify?)")
+            if not isinstance(g["key"], str) or g["verdict"] not in ("PASS", "FAIL", "REPORTED"):
+                raise ReportError(f"{where}: 'key' must be a string and 'verdict' PASS, FAIL or REPORTED, got "
+                                  f"{g['key']!r} and {g['verdict']!r}")
+            for key in ("error", "tolerance"):
+                v = g[key]
+                if v is not None and (isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v)):
+                    raise ReportError(f"{where}: {key!r} must be a finite number or null, got {v!r}")
+    return gates
+
+
+def _ours(junit: Path) -> bool:
+    """Whether ``junit`` is absent or a JUnit file verify wrote (its root is <testsuites name="verify">)."""
+    try:
+        with open(junit, "rb") as fh:
+            head = fh.read(200)
+    except FileNotFoundError:
+        return True
+    except OSError:
+        return False
+    return b'<testsuites name="verify"' in head
+
+
+def _inside(path: Path, folder: Path) -> bool:
+    path, folder = Path(path).resolve(), Path(folder).resolve()
+    return folder in path.parents
+
+
 def main(argv: list[str] | None = None) -> int:
     args = _parser().parse_args(argv)
+    from .report import ReportError, check_junit, check_out, drift, summary_line, write_report
+    from .runner import CaseError, load_cases, run_case
 
     def progress(line: str) -> None:
         print(line, file=sys.stderr, flush=True)
@@ -79,14 +152,25 @@ def main(argv: list[str] | None = None) -> int:
         if not args.drift > 0:
             raise CaseError(f"--drift must be > 0, got {args.drift}")
         check_out(args.out)
+        paths = _select(args)
+        check_out_folder(args.out, [args.cases_dir, *(p.parent for p in paths)], args.overwrite)
         if args.junit:
             check_junit(args.junit)
-        baseline = load_baseline(args.baseline) if args.baseline else None
-        cases = load_cases(_select(args), args.method)
-    except (CaseError, ReportError) as exc:
+            if _inside(args.junit, args.out):
+                raise ReportError(f"--junit {str(args.junit)!r} is inside --out {str(args.out)!r}, which the "
+                                  "report replaces; write it beside, e.g. --junit verify-junit.xml")
+            if not args.overwrite and not _ours(args.junit):
+                raise ReportError(f"--junit {str(args.junit)!r} exists and is not a JUnit file verify wrote; "
+                                  "name another file, or give --overwrite to replace it")
+        baseline = _baseline(args.baseline) if args.baseline else None
+        cases = load_cases(paths, args.method)
+    except (CaseError, ReportError, OutFolderError) as exc:
         for line in str(exc).splitlines():
             print(f"verify: error: {line}", file=sys.stderr)
         return EXIT_INPUT
+    except KeyboardInterrupt:
+        print("verify: interrupted while reading the cases; nothing was solved", file=sys.stderr)
+        return EXIT_INTERRUPTED
     if args.quick and not args.case:
         cases = [c for c in cases if c.get("quick", False)]
         if not cases:

@@ -1,6 +1,8 @@
 """The verification report: ``summary.md`` (one screen, for a CI job summary),
 ``report.md``, ``report.html``, ``metrics.json`` (strict JSON) and the figures; optionally
 a JUnit XML file with one test case per gate, and drift flags against an earlier run.
+The pages themselves (what a reader sees, in which units) are drawn by
+:mod:`verification.pages`.
 
 Everything is written into a fresh folder beside ``out`` and renamed into place at the
 end: an interrupted run leaves the previous report complete and untouched, and nothing of
@@ -9,7 +11,6 @@ an older run survives in the new one.
 
 from __future__ import annotations
 
-import html
 import json
 import math
 import os
@@ -20,14 +21,11 @@ from dataclasses import dataclass
 from pathlib import Path
 from xml.etree import ElementTree as ET
 
-from .formatting import fmt
-from .kinds import KINDS
-from .results import CaseResult, Gate, Table
+from .formatting import fmt, parameters
+from .pages import summary_line, write_pages
+from .results import CaseResult, Gate
 
 __all__ = ["write_report", "summary_line", "check_out", "check_junit", "load_baseline", "drift", "Drift", "ReportError"]
-
-GATE_HEAD = ("quantity", "method", "against", "level", "value", "reference", "error", "tolerance", "verdict",
-             "why this tolerance")
 
 
 class ReportError(ValueError):
@@ -44,10 +42,18 @@ def _probe(folder: Path, what: str) -> None:
 
 
 def check_out(out: Path) -> Path:
-    """``--out``: a folder (existing or to be made) in a writable place; checked before any solve."""
+    """``--out``: a folder (existing or to be made) in a writable place, never the working
+    or home folder or one holding them (:func:`verification.out_folder.never`); checked
+    before any solve. Returns it resolved (symlinks followed)."""
+    from .out_folder import OutFolderError, never
+
     out = Path(out)
     if out.exists() and not out.is_dir():
         raise ReportError(f"--out {str(out)!r} is a file, not a folder")
+    try:
+        out = never(out)
+    except OutFolderError as exc:
+        raise ReportError(str(exc)) from None
     parent = out.parent
     while not parent.exists():
         if parent.is_file():
@@ -169,55 +175,7 @@ def drift(results: list[CaseResult], baseline: dict, fraction: float) -> list[Dr
     return out
 
 
-# --- text ---------------------------------------------------------------------------
-
-
-def _gate_rows(result: CaseResult):
-    return [(g.quantity, g.method, g.against, g.level, fmt(g.value), fmt(g.reference), f"{g.error:.2e}",
-             f"{g.tolerance:.1e}" if math.isfinite(g.tolerance) else "-", g.verdict, g.reason) for g in result.gates]
-
-
-def _md_table(head, rows) -> str:
-    out = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
-    out += ["| " + " | ".join(str(c).replace("|", "/").replace("\n", " ") for c in row) + " |" for row in rows]
-    return "\n".join(out)
-
-
-def _html_table(head, rows) -> str:
-    h = "".join(f"<th>{html.escape(c)}</th>" for c in head)
-    body = ""
-    for row in rows:
-        cls = ' class="fail"' if "FAIL" in row else ""
-        body += f"<tr{cls}>" + "".join(f"<td>{html.escape(str(c))}</td>" for c in row) + "</tr>"
-    return f"<table><tr>{h}</tr>{body}</table>"
-
-
-def summary_line(results: list[CaseResult]) -> str:
-    """``PASS: 6 of 6 cases, 120 of 120 gates pass (...), 79 s.`` (or FAIL)."""
-    gated = [g for r in results for g in r.gates if not g.report_only]
-    reported = sum(g.report_only for r in results for g in r.gates)
-    ok = bool(results) and all(r.passed for r in results)
-    seconds = sum(r.seconds for r in results)
-    return (f"{'PASS' if ok else 'FAIL'}: {sum(r.passed for r in results)} of {len(results)} cases, "
-            f"{sum(g.passed for g in gated)} of {len(gated)} gates pass ({reported} further comparisons "
-            f"reported without a gate), {seconds:.0f} s.")
-
-
-def _summary(results: list[CaseResult], drifts: list[Drift]) -> tuple[str, Table, Table | None]:
-    line = summary_line(results)
-    rows = []
-    for r in results:
-        w = r.worst
-        n = [g for g in r.gates if not g.report_only]
-        rows.append((r.name, "PASS" if r.passed else "FAIL", f"{sum(g.passed for g in n)}/{len(n)}",
-                     f"{w.method} {w.quantity} vs {w.against} ({w.level})" if w else "-",
-                     f"{w.margin:.2f}" if w and math.isfinite(w.margin) else "-", f"{r.seconds:.0f}"))
-    cases = Table("Summary", ("case", "verdict", "gates", "worst gate", "error / tolerance", "time (s)"), tuple(rows))
-    flags = None
-    if drifts:
-        flags = Table("Drift since the baseline", ("gate", "error before", "error now", "tolerance", "note"),
-                      tuple((d.key, fmt(d.before), fmt(d.now), fmt(d.tolerance), d.note) for d in drifts))
-    return line, cases, flags
+# --- JUnit ---------------------------------------------------------------------------
 
 
 def _junit(results: list[CaseResult]) -> bytes:
@@ -227,8 +185,10 @@ def _junit(results: list[CaseResult]) -> bytes:
                               failures=str(sum(not g.passed for g in r.gates)),
                               skipped=str(sum(g.report_only for g in r.gates)), time=f"{r.seconds:.3f}")
         for g in r.gates:
+            where = parameters(r.name, g.case, "")  # a sweep's part, e.g. H = 0.5 mm
             case = ET.SubElement(suite, "testcase", classname=f"verify.{r.name}",
-                                 name=f"{g.method} {g.quantity} vs {g.against} ({g.level})")
+                                 name=f"{g.method} {g.quantity} vs {g.against} ({g.level})"
+                                      + (f", {where}" if where else ""))
             text = (f"error {g.error:.3e}, tolerance {g.tolerance:.1e} (value {fmt(g.value)}, reference "
                     f"{fmt(g.reference)}): {g.reason}")
             if g.report_only:
@@ -242,48 +202,7 @@ def _junit(results: list[CaseResult]) -> bytes:
 
 
 def _write_all(results, folder: Path, drifts: list[Drift]) -> None:
-    line, summary, flags = _summary(results, drifts)
-    top = [f"# Verification report\n\n**{line}**\n", _md_table(summary.head, summary.rows) + "\n"]
-    if flags:
-        top += [f"## {flags.title}\n", _md_table(flags.head, flags.rows) + "\n"]
-    (folder / "summary.md").write_text("\n".join(top))
-    md = list(top)
-    body = [f"<h1>Verification report</h1><p><b>{html.escape(line)}</b></p>", _html_table(summary.head, summary.rows)]
-    if flags:
-        body += [f"<h2>{flags.title}</h2>", _html_table(flags.head, flags.rows)]
-    for r in results:
-        kind = KINDS.get(r.kind)
-        ran = kind is not None and "error" not in r.extra  # a case that raised has nothing to draw
-        figs, tables, broken = [], [], ""
-        try:  # a table or figure that cannot be drawn must not lose the run's verdicts
-            if ran:
-                tables = kind.tables(r)
-                figs = kind.figures(r, folder)
-        except Exception as exc:
-            broken = f"The kind's tables or figures could not be drawn: {type(exc).__name__}: {exc}"
-            print(f"verify: warning: {r.name}: {broken}", file=sys.stderr)
-        verdict = "PASS" if r.passed else "FAIL"
-        md.append(f"## {r.name}: {verdict}\n\n**{r.title}** ({r.seconds:.1f} s)\n\n{r.why.strip()}\n")
-        body.append(f"<h2 id='{html.escape(r.name)}'>{html.escape(r.name)}: <span class='{verdict.lower()}'>{verdict}"
-                    f"</span></h2><p><b>{html.escape(r.title)}</b> ({r.seconds:.1f} s)</p>"
-                    f"<p>{html.escape(r.why.strip())}</p>")
-        if broken:
-            md.append(f"*{broken}*\n")
-            body.append(f"<p><i>{html.escape(broken)}</i></p>")
-        for table in tables:
-            md.append(f"**{table.title}**\n\n" + _md_table(table.head, table.rows) + "\n")
-            body.append(f"<h3>{html.escape(table.title)}</h3>" + _html_table(table.head, table.rows))
-        md.append("**Gates**\n\n" + _md_table(GATE_HEAD, _gate_rows(r)) + "\n")
-        body.append("<h3>Gates</h3>" + _html_table(GATE_HEAD, _gate_rows(r)))
-        for f in figs:
-            md.append(f"![{f}]({f})\n")
-            body.append(f"<img src='{html.escape(f)}' alt='{html.escape(f)}'>")
-    (folder / "report.md").write_text("\n".join(md))
-    style = ("body{font-family:sans-serif;max-width:1100px;margin:auto}table{border-collapse:collapse;margin:8px 0}"
-             "td,th{border:1px solid #ccc;padding:2px 6px;font-size:13px}tr.fail{background:#fdd}"
-             ".pass{color:green}.fail{color:#b00}img{max-width:49%;margin:4px}")
-    (folder / "report.html").write_text(f"<!doctype html><html><head><meta charset='utf-8'><title>Verification "
-                                        f"report</title><style>{style}</style></head><body>{''.join(body)}</body></html>")
+    write_pages(results, folder, drifts)  # summary.md, report.md, report.html, figures
     # metrics.json last: its presence says the folder is complete
     (folder / "metrics.json").write_text(json.dumps(_metrics(results, drifts), indent=1, allow_nan=False))
 
@@ -301,12 +220,13 @@ def _clean_stale(out: Path) -> None:
 
 
 def _replace(folder: Path, out: Path) -> None:
-    """Put the complete ``folder`` where ``out`` is; the old one goes only after."""
-    old = out.parent / f".{out.name}.old-{os.getpid()}"
-    if out.exists():
-        os.rename(out, old)
-    os.rename(folder, out)
-    shutil.rmtree(old, ignore_errors=True)
+    """Put the complete ``folder`` where ``out`` is, marked as a report; the old one goes
+    only after, and only if it is a report or empty (else it is kept beside, and said)."""
+    from .out_folder import replace
+
+    kept = replace(folder, out)
+    if kept is not None:
+        print(f"verify: {out} held files of its own: they are kept in {kept}", file=sys.stderr)
 
 
 def write_report(results: list[CaseResult], out: Path, junit: Path | None = None,

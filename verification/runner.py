@@ -15,6 +15,8 @@ import tomllib
 from pathlib import Path
 from typing import Callable
 
+from casefile.schema import BOTH, SCHEMA
+
 from . import methods as method_registry
 from .kinds import KINDS, Context
 from .results import CaseResult, Gate
@@ -23,6 +25,9 @@ from .schema import GATE, HEADER, CaseError, check_problem, check_table, close
 __all__ = ["CASES_DIR", "CaseError", "list_cases", "load_case", "load_cases", "run_case", "add_method"]
 
 CASES_DIR = Path(__file__).resolve().parent / "cases"
+#: the sections of [problem] every method needs (those the case-file schema requires of
+#: both solvers): the physical problem is not posed without them
+NEEDED = tuple(s for s in SCHEMA if set(BOTH) <= set(s.required_by))
 
 
 def list_cases(directory: Path = CASES_DIR) -> list[Path]:
@@ -79,6 +84,10 @@ def load_case(path: Path, known: dict | None = None) -> dict:
                         "(the command line and the results files find a case by it)")
     if "problem" in header:
         case["problem"] = check_problem(case["problem"], path)
+        missing = [s for s in NEEDED if s.name not in case["problem"]]
+        if missing:
+            raise CaseError(f"{path} [problem]: " + "; ".join(f"needs a [problem.{s.name}] section ({s.doc})"
+                                                               for s in missing))
     for i, gate in enumerate(case["gates"]):
         check_table(gate, GATE, f"{path} gates[{i}]")
     methods = _methods_of(case, path, known)
@@ -124,16 +133,17 @@ def load_cases(paths: list[Path], extra_methods: list[str] = ()) -> list[dict]:
 
 def run_case(case: dict, progress: Callable[[str], None] = print, quick: bool = False) -> CaseResult:
     """Solve one checked case with every method and level it names; evaluate its gates.
-    An exception inside a kind becomes a failed case with the error as its reason."""
+    An exception inside a kind (``SystemExit`` included) becomes a failed case with the
+    error as its reason; Ctrl-C and SIGTERM end the run."""
     kind = KINDS[case["kind"]]
     methods = case.get("_methods") or {**method_registry.builtin(), **method_registry.installed()}
     ctx = Context(progress=progress, quick=quick, methods=methods)
     t0 = time.perf_counter()
     try:
         return kind.run(copy.deepcopy({k: v for k, v in case.items() if k != "_methods"}), ctx)
-    except (KeyboardInterrupt, SystemExit, MemoryError):
+    except MemoryError:
         raise
-    except Exception as exc:
+    except (Exception, SystemExit) as exc:
         result = CaseResult(case["name"], case["title"], case.get("why", ""), case["kind"])
         result.extra["error"] = f"{type(exc).__name__}: {exc}"
         result.gates.append(Gate(case=case["name"], quantity="run", method="-", against="-", level="-",

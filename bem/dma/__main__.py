@@ -1,4 +1,4 @@
-"""``python -m bem.dma FILE``: master curve and Prony fit of a DMA CSV, with figures.
+"""``bem dma FILE`` (or ``python -m bem.dma FILE``): master curve and Prony fit of a DMA CSV, with figures.
 
 Prints the shift law, each isotherm's shift and the Prony fit's errors (with
 ``--print-material`` also the fitted series as a case file's ``[material]`` table); writes
@@ -16,26 +16,36 @@ import sys
 from pathlib import Path
 
 from .errors import DMAError
-from .master import build_master_curve
-from .plots import plot_isotherms, plot_master_curve, plot_shift_factors
-from .reader import read_dma_csv
 
 
-def main(argv=None) -> int:
-    p = argparse.ArgumentParser(prog="python -m bem.dma", description=__doc__.splitlines()[0])
-    p.add_argument("file", type=Path, help="DMA CSV (format: bem.dma.reader)")
+def main(argv=None, prog: str = "python -m bem.dma") -> int:
+    """Exit status 0, or 2 for bad input (the message names the file, line or option)."""
+    p = argparse.ArgumentParser(prog=prog, description=__doc__.splitlines()[0],
+                                epilog="exit status: 0 done; 2 bad input (the message names the file, line or "
+                                       "option). Workflow: docs/materials.md")
+    p.add_argument("file", type=Path, help="DMA CSV (format: docs/materials.md)")
     p.add_argument("--t-ref", type=float, required=True, help="reference temperature (degC)")
-    p.add_argument("--law", choices=("wlf", "arrhenius"), default="wlf")
-    p.add_argument("--quantity", choices=("modulus", "both", "tan_delta"), default=None)
-    p.add_argument("--vertical", choices=("density", "fit"), default=None)
-    p.add_argument("--terms-per-decade", type=float, default=1.0)
-    p.add_argument("--out", type=Path, default=Path("."), help="folder for the PNG figures")
-    p.add_argument("--prefix", default="", help="prefix of the figure file names")
-    p.add_argument("--table", type=Path, default=None, help="write the master curve table CSV here")
+    p.add_argument("--law", choices=("wlf", "arrhenius"), default="wlf",
+                   help="shift law fitted to the isotherms' overlap (default wlf)")
+    p.add_argument("--quantity", choices=("modulus", "both", "tan_delta"), default=None,
+                   help="curves overlapped (default modulus, or both with --vertical fit)")
+    p.add_argument("--vertical", choices=("density", "fit"), default=None,
+                   help="vertical shift b_T (default none)")
+    p.add_argument("--terms-per-decade", type=float, default=2.0,
+                   help="Prony relaxation times per decade (default 2, as [material] model = \"dma\")")
+    p.add_argument("--out", type=Path, default=Path("."), help="folder for the PNG figures (default .)")
+    p.add_argument("--prefix", default="", help="prefix of the figure file names (default none)")
+    p.add_argument("--table", type=Path, default=None,
+                   help="write the master curve table CSV here (default: not written)")
     p.add_argument("--print-material", action="store_true",
                    help="print the fitted Prony series as a case file's [material] table")
-    p.add_argument("--service-temperature", type=float, default=None, help="table temperature (degC)")
+    p.add_argument("--service-temperature", type=float, default=None,
+                   help="the table's temperature (degC; default --t-ref)")
     args = p.parse_args(argv)
+    from .master import build_master_curve  # numpy, scipy and matplotlib after --help
+    from .plots import plot_isotherms, plot_master_curve, plot_shift_factors
+    from .reader import read_dma_csv
+
     try:
         data = read_dma_csv(args.file)
         master = build_master_curve(data, args.t_ref + 273.15, args.law, quantity=args.quantity,

@@ -13,7 +13,8 @@ R_r = -0.12 N at h = 1 mm (4% of the section 11 case's viscoelastic R_r).
 Named boundaries (facet centroids): ``base`` (z = 0, bonded), ``inflow`` (x = L: the
 material enters), ``outflow`` (x = -L: it leaves), ``sym_y`` (y = 0, the symmetry
 plane), ``lateral`` (y = lateral, traction free), ``zone`` (z = H, x^2 + y^2 <= Z^2: the
-candidate contact half disk) and ``free`` (the rest of z = H). Lengths in m.
+candidate contact half disk of a sphere; a roller's is the rectangle |x| <= Z, y <= Z_y,
+``zone_y`` = its half length) and ``free`` (the rest of z = H). Lengths in m.
 """
 
 from __future__ import annotations
@@ -32,13 +33,16 @@ __all__ = ["half_box_mesh", "mirror_x"]
 NAMES = ("base", "inflow", "outflow", "sym_y", "lateral", "zone", "free")
 
 
-def _quarter(H: float, Z: float, length: float, lateral: float, sizes: GradedSizes):
+def _quarter(H: float, Z: float, length: float, lateral: float, sizes: GradedSizes, zone_y=None):
     def build():
         occ = gmsh.model.occ
         body = occ.addBox(0.0, 0.0, 0.0, length, lateral, H)
-        disk = occ.addDisk(0.0, 0.0, H, Z, Z)
-        quarter = occ.addRectangle(0.0, 0.0, H, Z, Z)
-        cut, _ = occ.intersect([(2, disk)], [(2, quarter)])
+        if zone_y is None:
+            disk = occ.addDisk(0.0, 0.0, H, Z, Z)
+            quarter = occ.addRectangle(0.0, 0.0, H, Z, Z)
+            cut, _ = occ.intersect([(2, disk)], [(2, quarter)])
+        else:
+            cut = [(2, occ.addRectangle(0.0, 0.0, H, Z, zone_y))]
         occ.fragment([(3, body)], cut)
         occ.synchronize()
         # OCC pads bounding boxes by 1e-7 m: a tolerance far above that and far below
@@ -47,7 +51,7 @@ def _quarter(H: float, Z: float, length: float, lateral: float, sizes: GradedSiz
         zone = []
         for _, tag in gmsh.model.getEntities(2):
             x0, y0, z0, x1, y1, z1 = gmsh.model.getBoundingBox(2, tag)
-            if z0 > H - tol and x1 < Z + tol and y1 < Z + tol:
+            if z0 > H - tol and x1 < Z + tol and y1 < (Z if zone_y is None else zone_y) + tol:
                 zone.append(tag)
         if len(zone) != 1:
             raise MeshError(f"the quarter box has {len(zone)} candidate-zone faces, not 1")
@@ -78,9 +82,10 @@ def mirror_x(mesh: MeshTet, tol: float) -> MeshTet:
 
 
 def half_box_mesh(thickness: float, zone: float, length: float, lateral: float,
-                  sizes: GradedSizes):
+                  sizes: GradedSizes, zone_y: float | None = None):
     """First-order tetrahedral mesh (skfem ``MeshTet``) of the half layer x in [-length,
-    length] (module docstring); ``sizes`` has ``mesh_size``, ``grading`` and ``far_size``.
+    length] (module docstring); ``sizes`` has ``mesh_size``, ``grading`` and ``far_size``;
+    ``zone_y`` (m) makes the candidate zone the rectangle |x| <= zone, y <= zone_y.
 
     Raises
     ------
@@ -89,22 +94,28 @@ def half_box_mesh(thickness: float, zone: float, length: float, lateral: float,
     """
     H, Z, L = thickness, zone, length
     tol = 1e-6 * min(H, Z)
-    mesh = mirror_x(_quarter(H, Z, L, lateral, sizes), tol)
+    mesh = mirror_x(_quarter(H, Z, L, lateral, sizes, zone_y), tol)
+    if zone_y is None:
+        def in_zone(x):
+            return np.hypot(x[0], x[1]) < Z
+    else:
+        def in_zone(x):
+            return (np.abs(x[0]) < Z) & (x[1] < zone_y)
     mesh = mesh.with_boundaries({
         "base": lambda x: np.abs(x[2]) < tol,
         "inflow": lambda x: np.abs(x[0] - L) < tol,
         "outflow": lambda x: np.abs(x[0] + L) < tol,
         "sym_y": lambda x: np.abs(x[1]) < tol,
         "lateral": lambda x: np.abs(x[1] - lateral) < tol,
-        "zone": lambda x: (np.abs(x[2] - H) < tol) & (np.hypot(x[0], x[1]) < Z),
-        "free": lambda x: (np.abs(x[2] - H) < tol) & (np.hypot(x[0], x[1]) >= Z),
+        "zone": lambda x: (np.abs(x[2] - H) < tol) & in_zone(x),
+        "free": lambda x: (np.abs(x[2] - H) < tol) & ~in_zone(x),
     })
     box = f"layer.thickness = {H:.6g} m, fem.upstream = fem.downstream = {L:.6g} m, " \
           f"fem.domain_radius = {lateral:.6g} m"
-    zone_set = f"fem.contact_zone = {Z:.6g} m"
+    zone_set = f"fem.contact_zone = {Z:.6g} m" + ("" if zone_y is None else f", half length {zone_y:.6g} m")
     require_boundaries(mesh, "half-box", {
         "base": ("the bonded base z = 0", box), "inflow": ("x = fem.upstream", box),
         "outflow": ("x = -fem.downstream", box), "sym_y": ("the symmetry plane y = 0", box),
-        "lateral": ("y = fem.domain_radius", box), "zone": ("the candidate half disk", zone_set),
+        "lateral": ("y = fem.domain_radius", box), "zone": ("the candidate zone", zone_set),
         "free": ("the top outside the zone", f"{zone_set}, {box}")})
     return mesh

@@ -168,9 +168,10 @@ def solve_rolling(problem: ContactProblem,
     V = problem.loading.speed
     if three_d:
         disc = resolve_box(problem)
-        say(f"3d rolling: meshing the half box (h = {disc.element_size:.3e} m on the half disk r <= "
-            f"{disc.contact_zone:.3e} m, x in [-{disc.downstream:.3e}, {disc.upstream:.3e}] m, "
-            f"y <= {disc.lateral:.3e} m, V = {V:g} m/s)")
+        shown = (f"the half disk r <= {disc.contact_zone:.3e} m" if disc.zone_y is None else
+                 f"the rectangle |x| <= {disc.contact_zone:.3e} m, y <= {disc.zone_y:.3e} m")
+        say(f"3d rolling: meshing the half box (h = {disc.element_size:.3e} m on {shown}, x in "
+            f"[-{disc.downstream:.3e}, {disc.upstream:.3e}] m, y <= {disc.lateral:.3e} m, V = {V:g} m/s)")
         system = build_box_system(problem, disc)
     else:
         disc = resolve_plane(problem)
@@ -211,8 +212,8 @@ def solve_rolling(problem: ContactProblem,
     h, zone = disc.element_size, disc.contact_zone
     nodes = system.nodes
     x_nodes = nodes[:, 0] if three_d else nodes
-    dist = np.hypot(nodes[:, 0], nodes[:, 1]) if three_d else np.abs(nodes)
-    where = "the half disk r" if three_d else "|x|"
+    dist = system.zone_distance() if three_d else np.abs(nodes)
+    where = ("|x|" if system.rectangular else "the half disk r") if three_d else "|x|"
     margin = (problem.fem.fit_nodes + 0.5) * h
     if sol.active.any() and dist[sol.active].max() > zone - margin:
         raise ContactZoneError(

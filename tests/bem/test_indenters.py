@@ -189,3 +189,100 @@ def test_height_map_axes_must_be_one_dimensional(x, y):
     """A 2-D axis whose size still matches h's shape is refused on its own account."""
     with pytest.raises(ValueError, match=r"^h must have shape \(len\(y\), len\(x\)\) = \(2, 2\), got \(2, 2\)$"):
         HeightMap(np.asarray(x), np.asarray(y), np.zeros((2, 2)))
+
+
+# --- the roller's ends: rounded (edge radius) or crowned --------------------------------
+
+
+def _arc_drop(radius, s):
+    """radius - sqrt(radius^2 - s^2) (m) in long double: the drop of a circular arc."""
+    r, s = np.longdouble(radius), np.longdouble(s)
+    return (r - np.sqrt(r * r - s * s)).astype(float)
+
+
+def test_rounded_roller_is_flat_then_an_arc_square_to_the_end_face():
+    """e(y) = 0 up to y0 = L/2 - r_e, then the arc r_e - sqrt(r_e^2 - (|y| - y0)^2), reaching
+    r_e at the end face; g = e + R - sqrt((R - e)^2 - x^2) (circle of the row's radius),
+    +inf beyond; relative 1e-13."""
+    R, L, re = 0.02, 0.008, 0.002
+    roller = Cylinder(R, L, re)
+    Y = np.array([0.0, -0.0015, 0.002, 0.0025, -0.0031, 0.004, -0.004])
+    s = np.clip(np.abs(Y) - 0.002, 0, None)
+    e = _arc_drop(re, s)
+    np.testing.assert_allclose(roller.axial_drop(Y), e, rtol=1e-13, atol=0)
+    assert roller.axial_drop(0.004) == pytest.approx(re, rel=1e-15)
+    X = np.full(Y.shape, 0.0013)
+    rho = np.longdouble(R) - np.longdouble(e)
+    expect = (np.longdouble(e) + rho - np.sqrt(rho * rho - np.longdouble(X) ** 2)).astype(float)
+    np.testing.assert_allclose(roller.profile(X, Y), expect, rtol=1e-13, atol=0)
+    assert np.isposinf(roller.profile(0.0, 0.00401))
+    np.testing.assert_allclose(roller.rolling_arm(X, Y), X / R, rtol=1e-15)
+
+
+def test_rounded_end_blends_tangentially_into_the_flat():
+    """At y0 = L/2 - r_e the drop and its slope are 0 on both sides (e(y0 - d) = 0 and e(y0 + d)
+    = d^2 / 2 r_e + O(d^4): the one-sided slopes e / d -> 0 linearly, d / 2 r_e); the curvature
+    jumps from 0 to 1 / r_e."""
+    L, re = 0.01, 0.003
+    y0 = L / 2 - re
+    roller = Cylinder(0.05, L, re)
+    for d in (1e-4, 1e-5, 1e-6):
+        assert roller.axial_drop(y0 - d) == 0.0
+        right = roller.axial_drop(y0 + d)
+        assert right / d == pytest.approx(d / (2 * re), rel=2 * (d / re) ** 2)  # slope -> 0
+        assert 2 * right / d**2 == pytest.approx(1 / re, rel=(d / re) ** 2)  # curvature 1 / r_e
+
+
+def test_edge_radius_to_zero_is_the_flat_ended_cylinder():
+    """The drop is at most r_e and only on the last r_e of each end: the gap grows by e times
+    d g / d e = rho / sqrt(rho^2 - x^2) <= (R - r_e) / sqrt((R - r_e)^2 - x^2) (the row's circle
+    of radius rho = R - e; 1.021 at |x| = R / 5),
+    so r_e = 1e-9 m moves no node's gap by more than 1.03e-9 m; r_e = 0 is the flat-ended
+    cylinder exactly."""
+    R, L = 0.02, 0.006
+    X, Y = np.meshgrid(np.linspace(-0.004, 0.004, 17), np.linspace(-0.003, 0.003, 25))
+    flat = Cylinder(R, L).profile(X, Y)
+    np.testing.assert_array_equal(Cylinder(R, L, 0.0).profile(X, Y), flat)
+    for re in (1e-4, 1e-6, 1e-9):
+        diff = Cylinder(R, L, re).profile(X, Y) - flat
+        assert np.all(diff >= 0) and np.all(diff <= re * (R - re) / np.sqrt((R - re) ** 2 - X * X) * (1 + 1e-9))
+        assert np.all(diff[np.abs(Y) < L / 2 - re] == 0)
+
+
+@pytest.mark.parametrize("kwargs", [dict(edge_radius=0.002), dict(crown_radius=1e4), dict()])
+def test_a_long_roller_has_the_line_profile_on_every_row(kwargs):
+    """L -> infinity: on |y| <= 0.05 m of a 100 m roller every row is the line contact's circle
+    (exact for flat and rounded ends; for a 10 km crown within e dg/de <= y^2 / 2 R_c R / sqrt(R^2
+    - x^2) = 1.25e-7 m x 1.155 at |x| = R / 2)."""
+    R = 0.02
+    X, Y = np.meshgrid(np.linspace(-0.01, 0.01, 21), np.linspace(-0.05, 0.05, 11))
+    line = LineCylinder(R).profile(X)
+    got = Cylinder(R, 100.0, **kwargs).profile(X, Y)
+    atol = 0.05**2 / (2 * kwargs["crown_radius"]) * 1.1548 if "crown_radius" in kwargs else 0
+    np.testing.assert_allclose(got, line, rtol=1e-13, atol=atol)
+
+
+def test_crowned_roller_drops_along_one_arc():
+    """e = R_c - sqrt(R_c^2 - y^2) over the whole length (y^2 / 2 R_c to small slope); relative 1e-13."""
+    R, L, Rc = 0.02, 0.01, 0.2
+    Y = np.array([0.0, 0.001, -0.003, 0.005])
+    np.testing.assert_allclose(Cylinder(R, L, crown_radius=Rc).axial_drop(Y), _arc_drop(Rc, Y), rtol=1e-13, atol=0)
+    assert Cylinder(R, L, crown_radius=Rc).axial_drop(0.004) == pytest.approx(0.004**2 / (2 * Rc), rel=2e-4)
+
+
+@pytest.mark.parametrize("args, kwargs, message", [
+    ((0.02, 0.006, 0.0031), {}, r"^edge_radius must be <= length / 2 = 0\.003 m \(the two end roundings meet at "
+                                r"mid-length\), got 0\.0031$"),
+    ((0.02, 0.006, -0.001), {}, r"^edge_radius must be finite and >= 0 m, got -0\.001$"),
+    ((0.02, 0.006, math.nan), {}, r"^edge_radius must be finite and >= 0 m, got nan$"),
+    ((0.002, 0.006, 0.002), {}, r"^edge_radius must be < radius = 0\.002 m \(an end rounding within the roller\), "
+                                r"got 0\.002$"),
+    ((0.02, 0.006), dict(crown_radius=0.0029), r"^crown_radius must be >= length / 2 = 0\.003 m \(an arc of radius "
+                                               r"R_c spans at most 2 R_c\), got 0\.0029$"),
+    ((0.02, 0.006), dict(crown_radius=-1.0), r"^crown_radius must be finite and > 0 m, got -1\.0$"),
+    ((0.02, 0.006, 0.001), dict(crown_radius=1.0), r"^give crown_radius or edge_radius, not both"),
+])
+def test_bad_roller_ends_are_refused_naming_the_key(args, kwargs, message):
+    with pytest.raises(ValueError, match=message):
+        Cylinder(*args, **kwargs)
+    assert Cylinder(0.02, 0.006, 0.003).edge_radius == 0.003  # r_e = L / 2: the ends meet at mid-length

@@ -278,10 +278,10 @@ def test_material_from_config_each_model(tmp_path):
 @pytest.mark.parametrize(
     "section, message",
     [
-        ({"shear_modulus": 1.0}, "material.model is missing (allowed: elastic, three_parameter, prony, table)"),
+        ({"shear_modulus": 1.0}, "material.model is missing (allowed: elastic, three_parameter, prony, table, dma)"),
         (
             {"model": "maxwell"},
-            "material.model must be one of elastic, three_parameter, prony, table, got 'maxwell'",
+            "material.model must be one of elastic, three_parameter, prony, table, dma, got 'maxwell'",
         ),
         (
             {"model": "elastic", "shear_modulus": 1.0, "G0": 1.0},
@@ -303,3 +303,59 @@ def test_material_from_config_each_model(tmp_path):
 def test_material_from_config_errors(tmp_path, section, message):
     with pytest.raises(ValueError, match=re.escape(message) + "$"):
         material_from_config(section, tmp_path)
+
+
+# ---------------------------------------------------------------- DMA data in a case
+
+
+def _dma_csv(path, law, temperatures=(273.15, 293.15, 313.15)) -> None:
+    """Isotherms of PRONY3 under ``law`` at 0.1-100 Hz (K, rad/s, shear Pa)."""
+    w = 2 * np.pi * np.logspace(-1, 2, 10)
+    rows = ["temperature_K,omega_rad_s,G_storage_Pa,G_loss_Pa"]
+    for T in temperatures:
+        g = PRONY3.modulus(w * 10.0 ** float(law.log_aT(T)))
+        rows += [f"{T!r},{float(x)!r},{float(a)!r},{float(b)!r}" for x, a, b in zip(w, g.real, g.imag)]
+    path.write_text("\n".join(rows) + "\n")
+
+
+def test_shifted_prony_is_the_time_temperature_identity():
+    """b_T G*_ref(a_T omega) equals the series with moduli times b_T and times times a_T."""
+    from bem.dma.case import shifted_prony
+
+    for log_a, log_b in ((2.5, 0.0), (-3.0, 0.02)):
+        moved = shifted_prony(PRONY3, log_a, log_b)
+        np.testing.assert_allclose(moved.modulus(OMEGA), 10 ** log_b * PRONY3.modulus(10 ** log_a * OMEGA),
+                                   rtol=1e-13, atol=0)
+
+
+def test_material_from_config_dma_at_a_service_temperature(tmp_path):
+    from bem.dma import WLF
+
+    law = WLF(8.86, 101.6, 293.15)
+    (tmp_path / "data").mkdir()
+    _dma_csv(tmp_path / "data" / "dma.csv", law)
+    sec = {"model": "dma", "file": "data/dma.csv", "reference_temperature": 293.15, "C1": 8.86, "C2": 101.6,
+           "terms_per_decade": 3.0}
+    at_ref = material_from_config(sec, tmp_path)
+    assert isinstance(at_ref, Prony)
+    hot = material_from_config({**sec, "temperature": 313.15}, tmp_path)
+    a_T = 10.0 ** (-8.86 * 20.0 / 121.6)
+    np.testing.assert_allclose(hot.modulus(OMEGA), at_ref.modulus(a_T * OMEGA), rtol=1e-12)
+    w = np.logspace(-0.5, 2.5, 31) / a_T  # the data's range at 313.15 K, away from its ends
+    assert np.max(np.abs(hot.modulus(w) / PRONY3.modulus(a_T * w) - 1)) < 0.01  # the fit of exact data
+    table = material_from_config({k: v for k, v in sec.items() if k != "terms_per_decade"} | {"form": "table"},
+                                 tmp_path)
+    assert isinstance(table, MasterCurveTable) and table.omega[0] < 1.0 < table.omega[-1]
+
+
+@pytest.mark.parametrize("extra, message", [
+    ({"temperatur": 300.0}, "[material]: unknown key 'temperatur' for model = \"dma\""),
+    ({"temperature": 0.0}, "[material] temperature must be > 0 K, got 0.0"),
+    ({"C1": 8.86}, "C1 = 8.86 is given without C2"),
+])
+def test_material_from_config_dma_errors(tmp_path, extra, message):
+    from bem.dma import WLF
+
+    _dma_csv(tmp_path / "dma.csv", WLF(8.86, 101.6, 293.15))
+    with pytest.raises(ValueError, match=re.escape(message)):
+        material_from_config({"model": "dma", "file": "dma.csv", "reference_temperature": 293.15, **extra}, tmp_path)

@@ -30,6 +30,8 @@ VARIANTS = {
     ("material", "three_parameter"): {"G0": 3e6, "tau": 0.25, "f": 1.0},
     ("material", "prony"): {"G_inf": 1e6, "G": [2e6], "tau": [0.1]},
     ("material", "table"): {"file": "curve.csv"},
+    ("material", "dma"): {"file": "dma.csv", "reference_temperature": 293.15, "C1": 8.86, "C2": 101.6,
+                          "extrapolate": True},
     ("indenter", "sphere"): {"radius": 0.02},
     ("indenter", "paraboloid"): {"radius": 0.02},
     ("indenter", "cylinder"): {"radius": 0.02, "length": 0.01},
@@ -42,6 +44,8 @@ def folder(tmp_path_factory):
     """A folder with the files that path keys point at."""
     path = tmp_path_factory.mktemp("cases")
     np.savetxt(path / "curve.csv", [[1e-3, 3e6, 1e3], [1e3, 3.1e6, 2e5], [1e6, 6e6, 1e4]], delimiter=",")
+    (path / "dma.csv").write_text("temperature_K,omega_rad_s,G_storage_Pa,G_loss_Pa\n"
+                                  "293.15,1,3e6,1e5\n293.15,10,3.2e6,2e5\n293.15,100,3.6e6,3e5\n")
     x = np.linspace(-0.01, 0.01, 21)
     np.savez(path / "h.npz", x=x, y=x, h=(x[None, :] ** 2 + x[:, None] ** 2) / 0.04)
     (path / "a_folder").mkdir()
@@ -97,6 +101,8 @@ def wrong_values(key: casefile.Key) -> st.SearchStrategy:
                          st.lists(st.floats(max_value=0.0), min_size=1), st.lists(NOT_FINITE, min_size=1))
     if key.kind == "path":
         return st.one_of(st.integers(), st.booleans(), st.just(""), st.just("missing.npz"), st.just("a_folder"))
+    if key.kind == "bool":  # only true and false
+        return st.one_of(st.integers(), st.floats(), st.text(max_size=5), st.just([]))
     wrong = st.text(max_size=8).filter(lambda s: s not in key.choices) if key.choices else st.nothing()
     return st.one_of(st.integers(), st.booleans(), st.floats(), st.just([]), wrong)
 

@@ -63,7 +63,10 @@ def test_case_file_reads_the_shared_format(tmp_path):
      'time-domain form'),
     ({"loading__speed": 0.05}, "\\[loading\\] speed must be 0 m/s"),
     ({"indenter__shape": "cylinder", "indenter__length": 0.01},
-     'cannot solve \\[indenter\\] shape = "cylinder"; it reads sphere, paraboloid'),
+     'cannot solve \\[indenter\\] shape = "cylinder" with fem.model = \'3d\' and loading.speed = 0.0: '
+     'a roller is solved by the 3d rolling model only'),
+    ({"indenter": {"shape": "heightmap", "file": __file__}},
+     'cannot solve \\[indenter\\] shape = "heightmap"; it reads sphere, paraboloid, cylinder, line'),
 ])
 def test_case_rejects_what_the_fem_cannot_do(change, message):
     with pytest.raises(InputError, match=message):

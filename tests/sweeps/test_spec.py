@@ -127,7 +127,7 @@ def test_a_scheduler_that_does_not_answer(tmp_path, capsys):
     assert main([str(path), "--out", str(out), "--scheduler", address, "--timeout", "1", "--no-cache"]) == 2
     assert time.perf_counter() - t0 < 20
     err = capsys.readouterr().err
-    assert f"--scheduler {address}: no Dask scheduler answers there within 1 s" in err
+    assert f"--scheduler {address}: no Dask scheduler answers at {address} within 1 s" in err
     assert not (out / "results.csv").exists()
 
 

@@ -15,7 +15,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Callable
 
-from . import paper_sweeps, rolling_2d, rolling_3d, rolling_limits, stationary, sweep, table1
+from . import paper_sweeps, roller_3d, rolling_2d, rolling_3d, rolling_limits, stationary, sweep, table1
 
 __all__ = ["KINDS", "Context"]
 
@@ -26,6 +26,7 @@ KINDS = {
     "rolling-limits": rolling_limits,
     "rolling-2d": rolling_2d,
     "rolling-3d": rolling_3d,
+    "roller-3d": roller_3d,
     "paper-sweeps": paper_sweeps,
 }
 

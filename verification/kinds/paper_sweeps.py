@@ -146,28 +146,39 @@ def tables(result: CaseResult) -> list[Table]:
 
 
 def figures(result: CaseResult, folder) -> list[str]:
+    """Our points against the paper's laws: against the load (Table 2) and against the
+    thickness (Table 3), one figure each (legible at page width)."""
     found = result.extra.get("found")
     if not found:
         return []
     from sweeps.paper import curve
 
     y = result.extra["y"]
-    fig = new_figure((10, 4))
-    axes = fig.subplots(1, 2)
+    names = []
+    fig = new_figure((6.4, 4.2))
+    ax = fig.subplots()
     for H, item in found["table2"].items():
         P, R = curve(result.extra["rows"]["loads"], "loading.load", y, **{"layer.thickness": H})
-        line, = axes[0].plot(P, R, "o", label=f"ours, H = {H * 1e3:g} mm")
-        axes[0].plot(P, item["paper"](P), "-", color=line.get_color(), lw=1, label="paper's law")
-    axes[0].set_xlabel("load P (N)")
-    axes[0].set_ylabel(f"{y} (N)")
+        line, = ax.plot(P, R, "o", label=f"ours, H = {H * 1e3:g} mm")
+        ax.plot(P, item["paper"](P), "-", color=line.get_color(), lw=1, label="paper's law (Table 2)")
+    ax.set_xlabel("load P (N)")
+    ax.set_ylabel(f"{y} (N)")
+    names.append(f"{result.name}-laws-load.png")
+    _finish(fig, ax, folder / names[-1])
+    fig = new_figure((6.4, 4.2))
+    ax = fig.subplots()
     for P, item in found["table3"].items():
         H, R = curve(result.extra["rows"]["thickness"], "layer.thickness", y, **{"loading.load": P})
-        line, = axes[1].plot(H * 1e3, R, "o", label=f"ours, P = {P:g} N")
-        axes[1].plot(H * 1e3, item["paper"](H), "-", color=line.get_color(), lw=1, label="paper's law")
-    axes[1].set_xlabel("layer thickness H (mm)")
-    for ax in axes:
-        ax.grid(alpha=0.3)
-        ax.legend(fontsize=7)
-    name = f"{result.name}-laws.png"
-    fig.savefig(folder / name, dpi=110)
-    return [name]
+        line, = ax.plot(H * 1e3, R, "o", label=f"ours, P = {P:g} N")
+        ax.plot(H * 1e3, item["paper"](H), "-", color=line.get_color(), lw=1, label="paper's law (Table 3)")
+    ax.set_xlabel("layer thickness H (mm)")
+    ax.set_ylabel(f"{y} (N)")
+    names.append(f"{result.name}-laws-thickness.png")
+    _finish(fig, ax, folder / names[-1])
+    return names
+
+
+def _finish(fig, ax, path) -> None:
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.savefig(path, dpi=110)

@@ -102,11 +102,16 @@ def _energy(run: Run, speed: float) -> tuple[float, float, float]:
     return work, energy, abs(work - energy) / abs(energy)
 
 
-def run(case: dict, ctx) -> CaseResult:
+def run(case: dict, ctx, derive=None) -> CaseResult:
+    """The methods on their levels, then the gates; ``derive(run)``, if given, adds
+    scalars to each method's runs before the gates read them (:mod:`.roller_3d`)."""
     t0 = time.perf_counter()
     result = CaseResult(case["name"], case["title"], case.get("why", ""), case["kind"])
     speed = result.extra["speed"] = case["problem"]["loading"]["speed"]
     stationary.solve_methods(case, result, ctx, names=_used(case))
+    for runs in result.runs.values() if derive is not None else ():
+        for r in runs:
+            derive(r)
     failed = result.extra["failed"]
     for spec in case["gates"]:
         q, against = spec["quantity"], spec["against"]
@@ -158,7 +163,7 @@ def tables(result: CaseResult) -> list[Table]:
             c = result.convergence.get((method, q))
             if c is None or q != "rolling_resistance":
                 continue
-            note = f"Richardson, order {c.order:.2f}" + ("" if c.asymptotic else " (not asymptotic: finest kept)")
+            note = f"Richardson, {stationary.order_note(c)}"
             rows.append((method, note, fmt(c.extrapolated), *[""] * len(_COLUMNS)))
     head = ("method", "h or a (mm)", *(label for _, label, _ in _COLUMNS), "time (s)")
     return [Table("Runs (scalars on the whole contact; edges on y = 0)", head, tuple(rows))] if rows else []
@@ -193,7 +198,8 @@ def figures(result: CaseResult, folder) -> list[str]:
         c = result.convergence.get((method, "rolling_resistance"))
         if c is not None and math.isfinite(c.extrapolated):
             ax.axhline(c.extrapolated, color=f"C{k}", ls="--", lw=0.8,
-                       label=f"{method} Richardson {c.extrapolated:.5g} N (p = {c.order:.2f})")
+                       label=f"{method} Richardson {c.extrapolated:.5g} N ("
+                             f"{f'p = {c.order:.2f}' if math.isfinite(c.order) else 'no order'})")
     ax.set_xlabel("node spacing / element size at the contact (mm)")
     ax.set_ylabel("rolling resistance R_r (N)")
     ax.grid(alpha=0.3, which="both")

@@ -80,8 +80,8 @@ def run(case: dict, ctx) -> CaseResult:
         visco = bem.run(_with(base, limit["speed"]), settings, spacing)
         still = bem.run(elastic, settings, spacing)
         mid = bem.run(_with(base, limit["reference_speed"]), settings, spacing)
-        ctx.progress(f"  {case['name']}: V = {limit['speed']:g} m/s: d = {visco.scalars['indentation']:.6e} m "
-                     f"(elastic {limit['modulus']}: {still.scalars['indentation']:.6e} m), "
+        ctx.progress(f"  {case['name']}: V = {limit['speed']:g} m/s: d = {visco.scalars['indentation'] * 1e3:.6g} mm "
+                     f"(elastic {limit['modulus']}: {still.scalars['indentation'] * 1e3:.6g} mm), "
                      f"R_r = {visco.scalars['rolling_resistance']:.3e} N")
         rows.append((limit, visco, still, mid))
         for spec in case["gates"]:

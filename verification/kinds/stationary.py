@@ -9,7 +9,7 @@ import time
 import numpy as np
 
 from ..methods import references
-from ..formatting import fmt, new_figure
+from ..formatting import fmt, new_figure, scalars_line
 from ..metrics import pressure_difference, richardson
 from ..results import CaseResult, Gate, Run, Table
 from ..schema import PRESSURE, SCALARS, CaseError
@@ -65,6 +65,8 @@ def solve_methods(case: dict, result: CaseResult, ctx, problem: dict | None = No
     ``result.convergence``."""
     problem = case["problem"] if problem is None else problem
     failed = result.extra.setdefault("failed", {})
+    moving = problem.get("loading", {}).get("speed", 0.0) > 0  # a rolling resistance only when rolling
+    shown = SHOWN if moving else tuple(q for q in SHOWN if q != "rolling_resistance")
     for name in _used(case) if names is None else names:
         method = ctx.methods[name]
         runs = []
@@ -72,8 +74,8 @@ def solve_methods(case: dict, result: CaseResult, ctx, problem: dict | None = No
             for level in method.levels(case):
                 run = _check_run(method.solve(problem, level), name)
                 size = "" if run.size is None else f"h = {run.size * 1e3:.4g} mm: "
-                shown = ", ".join(f"{k} = {v:.6g}" for k, v in run.scalars.items() if k in SHOWN)
-                ctx.progress(f"  {case['name']}: {name} {size}{shown} ({run.seconds:.1f} s)")
+                ctx.progress(f"  {case['name']}: {name} {size}{scalars_line(run.scalars, shown)} "
+                             f"({run.seconds:.1f} s)")
                 runs.append(run)
         except Exception as exc:  # one failing method fails its gates, not the suite
             failed[name] = f"{type(exc).__name__}: {exc}"
@@ -178,16 +180,22 @@ def tables(result: CaseResult) -> list[Table]:
             s = r.scalars
             rows.append((method, "-" if r.size is None else f"{r.size * 1e3:g}",
                          fmt(s.get("contact_radius", math.nan) * 1e3), fmt(s.get("indentation", math.nan) * 1e3),
-                         fmt(s.get("peak_pressure", math.nan) / 1e6), f"{r.seconds:.1f}"))
+                         fmt(s.get("peak_pressure", math.nan) / 1e6), f"{r.seconds:.1f}", ""))
         for q in ("contact_radius", "indentation"):
             c = result.convergence.get((method, q))
             if c is not None:
-                note = f"order {c.order:.2f}" + ("" if c.asymptotic else " (not asymptotic: finest kept)")
                 value = fmt(c.extrapolated * 1e3)
                 rows.append((method, f"Richardson {q}", value if q == "contact_radius" else "",
-                             value if q == "indentation" else "", note, ""))
-    head = ("method", "h or a (mm)", "r_c (mm)", "d (mm)", "p_max (MPa)", "time (s)")
+                             value if q == "indentation" else "", "", "", order_note(c)))
+    head = ("method", "h or a (mm)", "r_c (mm)", "d (mm)", "p_max (MPa)", "time (s)", "note")
     return [Table("Runs", head, tuple(rows))] if rows else []
+
+
+def order_note(c) -> str:
+    """The Richardson row's note: the observed order, or why there is none."""
+    if not math.isfinite(c.order):
+        return "no order (the levels do not converge monotonically): finest kept"
+    return f"order {c.order:.2f}" + ("" if c.asymptotic else " (not asymptotic: finest kept)")
 
 
 def _reference_profile(result):
@@ -255,7 +263,8 @@ def figures(result: CaseResult, folder) -> list[str]:
             err = np.abs(np.array(conv.values) - conv.extrapolated) / abs(conv.extrapolated)
             ok = err > 0
             if ok.any():
-                ax.loglog(h[ok], err[ok], marker + "-", label=f"{method} {q} (p = {conv.order:.2f})")
+                order = f"p = {conv.order:.2f}" if math.isfinite(conv.order) else "no order"
+                ax.loglog(h[ok], err[ok], marker + "-", label=f"{method} {q} ({order})")
     ax.set_xlabel("element size / node spacing (mm)")
     ax.set_ylabel("|q - q_Richardson| / |q|")
     ax.grid(alpha=0.3, which="both")

@@ -62,20 +62,23 @@ def tables(result: CaseResult) -> list[Table]:
 
 
 def figures(result: CaseResult, folder) -> list[str]:
+    """Contact radius and indentation against H, one figure each (legible at page width)."""
     rows = result.extra.get("sweep", [])
     if not rows:
         return []
     H = np.array([h for h, _ in rows]) * 1e3
-    fig = new_figure((10, 4))
-    axes = fig.subplots(1, 2)
     methods = sorted({m for _, part in rows for m in part.runs})
-    for q, ax in zip(("contact_radius", "indentation"), axes):
+    names = []
+    for q, label in (("contact_radius", "contact radius r_c (mm)"), ("indentation", "indentation d (mm)")):
+        fig = new_figure((6.4, 4.2))
+        ax = fig.subplots()
         for i, method in enumerate(methods):
-            ax.semilogx(H, [_scalar(part, method, q) for _, part in rows], "os^v"[i % 4] + "-", label=method)
+            ax.semilogx(H, [_scalar(part, method, q) for _, part in rows], "os^v"[i % 4] + "-", mfc="none",
+                        ms=9 if i == 0 else 6, label=method)
         ax.set_xlabel("layer thickness H (mm)")
-        ax.set_ylabel(f"{q.replace('_', ' ')} (mm)")
+        ax.set_ylabel(label)
         ax.grid(alpha=0.3, which="both")
         ax.legend()
-    name = f"{result.name}-sweep.png"
-    fig.savefig(folder / name, dpi=110)
-    return [name]
+        names.append(f"{result.name}-sweep-{q.replace('_', '-')}.png")
+        fig.savefig(folder / names[-1], dpi=110)
+    return names

@@ -16,25 +16,36 @@ Built in: ``bem`` and ``fem``. Others come
 A case lists its levels for a method in the method's section (``[bem] spacings``,
 ``[fem] element_sizes``, ``[methods.NAME] sizes``); a method without sizes is run once
 (``level.size = None``), and an external one has the levels of its file.
+
+A method that is not built in is called the way user input is read: it gets its own copy
+of the problem and the level, a result that breaks :func:`verification.results.check_run`
+(not finite, a wrong type or shape, a load that is not > 0, ...) and anything it raises,
+including ``SystemExit`` and errors while its module is imported (a syntax error), is a
+:class:`verification.results.MethodError` that fails that method's gates with the reason;
+the run goes on. A spec that names nothing (no such file, module or function) is an input
+error (:class:`verification.schema.CaseError`) before anything is solved.
 """
 
 from __future__ import annotations
 
+import copy
 import importlib
 import importlib.metadata
 import re
+import sys
+import zlib
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable
 
-from ..results import Level
+from ..results import Level, MethodError, check_run
 from ..schema import CaseError, Field, check_table, close
 from . import bem as _bem
 from . import fem as _fem
 from .external import ExternalResults
 
 __all__ = ["ENTRY_POINT_GROUP", "Method", "builtin", "installed", "parse_option", "from_section",
-           "load_callable", "RESERVED"]
+           "load_callable", "plugin", "RESERVED"]
 
 ENTRY_POINT_GROUP = "viscolayer.methods"
 RESERVED = ("analytic", "published", "elastic", "dissipation")
@@ -62,8 +73,9 @@ class Method:
     def levels(self, case: dict) -> list[Level]:
         """The levels ``case`` asks of this method, coarse to fine."""
         settings = self.settings(case)
-        if isinstance(self.solve, ExternalResults):
-            sizes = self.solve.sizes(case["name"])
+        inner = getattr(self.solve, "func", self.solve)
+        if isinstance(inner, ExternalResults):
+            sizes = inner.sizes(case["name"])
         else:
             sizes = settings.get(self.sizes_key, [None])
         rest = {k: v for k, v in settings.items() if k not in (self.sizes_key, "entry", "results")}
@@ -88,18 +100,36 @@ def check_name(name: str, where: str) -> str:
 
 
 def load_callable(spec: str, where: str) -> Callable:
-    """``package.module:function`` imported; a clear error for each way it can go wrong."""
+    """``package.module:function`` (or ``path/file.py:function``) imported.
+
+    Raises
+    ------
+    CaseError
+        The spec names nothing: malformed, no such file or module, no such function, or
+        not callable (an input error, before anything is solved).
+    MethodError
+        The module's own code fails while it is imported: it raises (a syntax error, a
+        missing dependency) or exits.
+    """
     module_name, sep, attr = str(spec).rpartition(":")
     if not sep or not module_name or not attr:
         raise CaseError(f"{where}: a method entry is 'package.module:function' or 'path/file.py:function', "
                         f"got {spec!r}")
+    if module_name.endswith(".py") and not Path(module_name).is_file():
+        raise CaseError(f"{where}: no file {module_name!r}")
     try:
         if module_name.endswith(".py"):
-            module = _import_file(Path(module_name), where)
+            module = _import_file(Path(module_name))
         else:
             module = importlib.import_module(module_name)
-    except ImportError as exc:
-        raise CaseError(f"{where}: cannot import {module_name!r}: {exc}") from None
+    except ModuleNotFoundError as exc:
+        if exc.name and (module_name == exc.name or module_name.startswith(exc.name + ".")):
+            raise CaseError(f"{where}: cannot import {module_name!r}: {exc}") from None
+        raise MethodError(f"{module_name!r} could not be imported: {type(exc).__name__}: {exc}") from None
+    except SystemExit as exc:
+        raise MethodError(f"{module_name!r} exited while imported (SystemExit({exc.code!r}))") from None
+    except Exception as exc:  # its own code: a syntax error, an exception at import
+        raise MethodError(f"{module_name!r} could not be imported: {type(exc).__name__}: {exc}") from None
     obj = module
     for part in attr.split("."):
         if not hasattr(obj, part):
@@ -111,19 +141,71 @@ def load_callable(spec: str, where: str) -> Callable:
     return obj
 
 
-def _import_file(path: Path, where: str):
-    """A module from a file (``verify --method NAME=my_method.py:solve``)."""
+def _import_file(path: Path):
+    """A module from a file (``verify --method NAME=my_method.py:solve``), named after the
+    file's full path so that two files of one name stay two modules."""
     import importlib.util
-    import sys
 
-    if not path.is_file():
-        raise CaseError(f"{where}: no file {str(path)!r}")
-    name = f"verify_method_{path.stem}"
+    stem = re.sub(r"\W", "_", path.stem)
+    name = f"verify_method_{stem}_{zlib.crc32(str(path.resolve()).encode()):08x}"
     spec = importlib.util.spec_from_file_location(name, path)
     module = importlib.util.module_from_spec(spec)
     sys.modules[name] = module
-    spec.loader.exec_module(module)
+    try:
+        spec.loader.exec_module(module)
+    except BaseException:
+        sys.modules.pop(name, None)
+        raise
     return module
+
+
+class _Guarded:
+    """A method that is not built in, called like user input is read: a copy of the
+    problem and level, its result through :func:`check_run`, and whatever it raises or
+    exits with as a :class:`MethodError` naming the method and where it came from.
+    Ctrl-C and SIGTERM (not ``Exception``s) still end the run."""
+
+    def __init__(self, func: Callable, name: str, origin: str):
+        self.func, self.name, self.origin = func, name, origin
+
+    def __call__(self, problem: dict, level: Level):
+        where = f"method {self.name!r} ({self.origin})"
+        try:
+            run = self.func(copy.deepcopy(problem), copy.deepcopy(level))
+        except SystemExit as exc:
+            raise MethodError(f"{where} exited (SystemExit({exc.code!r})) instead of returning a Run") from None
+        except MethodError as exc:
+            raise MethodError(f"{where}: {exc}") from None
+        except Exception as exc:
+            raise MethodError(f"{where} raised {type(exc).__name__}: {exc}") from exc
+        try:
+            return check_run(run)
+        except MethodError as exc:
+            raise MethodError(f"{where} returned a result the gates cannot use: {exc}") from None
+
+
+class _Broken:
+    """A plugin whose module failed at import: every call fails with that error."""
+
+    def __init__(self, error: MethodError):
+        self.error = str(error)
+
+    def __call__(self, problem, level):
+        raise MethodError(self.error)
+
+
+def plugin(name: str, func: Callable, origin: str) -> Method:
+    """A method that is not built in: ``func`` guarded (:class:`_Guarded`), its levels in
+    the case's ``[methods.NAME]``."""
+    return Method(name, _Guarded(func, name, origin), f"methods.{name}", origin=origin)
+
+
+def _loaded(spec: str, where: str) -> Callable:
+    """:func:`load_callable`, with a module that fails at import kept as a method that fails."""
+    try:
+        return load_callable(spec, where)
+    except MethodError as exc:
+        return _Broken(exc)
 
 
 def installed() -> dict[str, Method]:
@@ -133,8 +215,7 @@ def installed() -> dict[str, Method]:
     for ep in importlib.metadata.entry_points(group=ENTRY_POINT_GROUP):
         if ep.name in builtin() or not _NAME.match(ep.name) or ep.name in RESERVED:
             continue
-        out[ep.name] = Method(ep.name, _Deferred(ep.value, f"entry point {ep.name}"),
-                              f"methods.{ep.name}", origin=f"entry point {ep.value}")
+        out[ep.name] = plugin(ep.name, _Deferred(ep.value, f"entry point {ep.name}"), f"entry point {ep.value}")
     return out
 
 
@@ -166,8 +247,8 @@ def parse_option(text: str, known: dict[str, Method]) -> Method:
     if ":" not in target or path.suffix == ".json" or path.is_dir():
         if not path.exists():
             raise CaseError(f"{where}: {target!r} is neither a results folder or file nor 'package.module:function'")
-        return Method(name, ExternalResults(name, path), f"methods.{name}", origin=f"results {path}")
-    return Method(name, load_callable(target, where), f"methods.{name}", origin=f"--method {target}")
+        return plugin(name, ExternalResults(name, path), f"results {path}")
+    return plugin(name, _loaded(target, where), where)
 
 
 SECTION = {
@@ -191,10 +272,9 @@ def from_section(name: str, section: dict, folder: Path, known: dict[str, Method
         path = (folder / section["results"]).resolve()
         if not path.exists():
             raise CaseError(f"{where}: results file {section['results']!r} not found (looked at {path})")
-        return Method(name, ExternalResults(name, path), f"methods.{name}", origin=f"results {path}")
+        return plugin(name, ExternalResults(name, path), f"results {path}")
     if "entry" in section:
-        return Method(name, load_callable(section["entry"], f"{where} entry"), f"methods.{name}",
-                      origin=f"case entry {section['entry']}")
+        return plugin(name, _loaded(section["entry"], f"{where} entry"), f"case entry {section['entry']}")
     if name in known:
         return known[name]
     raise CaseError(f"{where}: {name!r} is not an installed method; give 'entry' or 'results'"

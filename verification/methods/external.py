@@ -13,6 +13,11 @@ radius) or ``x,y,pressure`` (samples on a grid; the harness uses their distance 
 axis), in the same units. Scalars in the file: ``contact_radius`` and ``indentation``
 (length), ``peak_pressure`` (pressure), ``load`` and ``rolling_resistance`` (force).
 A folder of such files holds one per case, named ``<case>.json``.
+
+Every number is read like user input: finite (JSON's ``NaN`` and ``Infinity`` are refused),
+``size`` > 0, ``seconds`` >= 0, ``load`` > 0, ``contact_radius`` and ``peak_pressure``
+>= 0; a file that breaks a rule is a :class:`verification.schema.CaseError` naming the
+file and the field (``verify`` exits 2 before anything is solved).
 """
 
 from __future__ import annotations
@@ -23,7 +28,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..results import Level, Run
+from ..results import Level, MethodError, Run, check_scalar
 from ..schema import CaseError, close
 
 __all__ = ["UNITS", "read_results", "results_file", "ExternalResults"]
@@ -39,6 +44,14 @@ SCALAR_UNITS = {"contact_radius": "length", "indentation": "length", "peak_press
 
 def _fail(path: Path, message: str):
     raise CaseError(f"{path}: {message}")
+
+
+def _number(path: Path, where: str, name: str, value, what: str = "") -> float:
+    """``value`` as :func:`check_scalar` reads it; a :class:`CaseError` naming the file."""
+    try:
+        return check_scalar(name, value, what)
+    except MethodError as exc:
+        _fail(path, f"{where}: {exc}")
 
 
 def _read_csv(path: Path, length: float, pressure: float):
@@ -76,7 +89,7 @@ def read_results(path: Path, method: str) -> list[Run]:
                     f"\"pressure\": \"Pa\", \"force\": \"N\"}})")
     scale = {}
     for q, unit in units.items():
-        if unit not in UNITS[q]:
+        if not isinstance(unit, str) or unit not in UNITS[q]:
             _fail(path, f"unknown {q} unit {unit!r}; known: {', '.join(UNITS[q])}{close(unit, UNITS[q])}")
         scale[q] = UNITS[q][unit]
     levels = doc["levels"]
@@ -95,17 +108,21 @@ def read_results(path: Path, method: str) -> list[Run]:
             if name not in SCALAR_UNITS:
                 _fail(path, f"{where}: unknown scalar {name!r}; known: {', '.join(SCALAR_UNITS)}"
                             f"{close(name, SCALAR_UNITS)}")
-            if isinstance(value, bool) or not isinstance(value, (int, float)) or not np.isfinite(value):
-                _fail(path, f"{where}: scalar {name} must be a finite number, got {value!r}")
-            si[name] = float(value) * scale[SCALAR_UNITS[name]]
+            si[name] = _number(path, where, name, value) * scale[SCALAR_UNITS[name]]
         size = level.get("size")
-        if size is not None and (isinstance(size, bool) or not isinstance(size, (int, float)) or not size > 0):
-            _fail(path, f"{where}: size must be a number > 0, got {size!r}")
+        if size is not None:
+            size = _number(path, where, "size", size, "size")
+            if not size > 0:
+                _fail(path, f"{where}: size must be a number > 0, got {size!r}")
+        seconds = _number(path, where, "seconds", level.get("seconds", 0.0), "seconds")
+        if seconds < 0:
+            _fail(path, f"{where}: seconds cannot be negative, got {seconds!r}")
         r, p = np.zeros(0), np.zeros(0)
         if "pressure" in level:
-            r, p = _read_csv(path.parent / str(level["pressure"]), scale["length"], scale["pressure"])
-        runs.append(Run(method, None if size is None else float(size) * scale["length"], si, r, p,
-                        float(level.get("seconds", 0.0))))
+            if not isinstance(level["pressure"], str):
+                _fail(path, f"{where}: pressure must be the name of a CSV file, got {level['pressure']!r}")
+            r, p = _read_csv(path.parent / level["pressure"], scale["length"], scale["pressure"])
+        runs.append(Run(method, None if size is None else size * scale["length"], si, r, p, seconds))
     return runs
 
 

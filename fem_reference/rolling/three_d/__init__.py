@@ -1,7 +1,8 @@
-"""Steady rolling of a rigid sphere on the half layer y >= 0 in 3D (``fem.model = "3d"``
-with a speed): sizes (:mod:`.discretization`), weak forms of the five traceless
-viscous-strain components (:mod:`.forms`), the assembled half layer (:mod:`.system`) and
-the result (:mod:`.result`)."""
+"""Steady rolling of a rigid sphere or a roller of finite length (``indenter.shape =
+"cylinder"``) on the half layer y >= 0 in 3D (``fem.model = "3d"`` with a speed): sizes
+(:mod:`.discretization`), weak forms of the five traceless viscous-strain components
+(:mod:`.forms`), the assembled half layer (:mod:`.system`) and the result
+(:mod:`.result`)."""
 
 from .discretization import BoxDiscretization, resolve_box
 from .result import SphereRollingResult

@@ -1,4 +1,4 @@
-"""Sizes of the 3D steady-rolling model (sphere, half box y >= 0): the ``[fem]``
+"""Sizes of the 3D steady-rolling model (sphere or roller, half box y >= 0): the ``[fem]``
 defaults resolved, and the checks that the truncated layer is long and wide enough.
 
 The defaults scale with an a-priori contact radius a_est (m) for the relaxed modulus
@@ -16,10 +16,21 @@ is mirror-symmetric about x = 0 (:mod:`fem_reference.mesh.half_box`), so both le
 become the larger of the two (``upstream`` = ``downstream`` in the resolved sizes).
 Element size h_c = ``fem.element_size`` (default min(a_est / 10, H / 5)) on the zone,
 growing as h_c + grading * distance up to ``fem.far_size`` (default H).
+
+A roller (``indenter.shape = "cylinder"``, length L) has a line contact: a_est is then
+its half-width b_est under the load per unit length P' = P / L, the smaller of the
+plane-strain Hertz half-width sqrt(P' R / (pi G_inf)) (E* = 4 G) and the thin-layer
+asymptote (15 P' R H^3 / (2 G_inf))^(1/5) (the incompressible bonded layer's surface
+deflection -(H^3 / 3 G) p'' with p = A (b^2 - x^2)^2, as Jaffar's axisymmetric one);
+sqrt(2 R d) under displacement control. The candidate zone is the rectangle |x| <=
+contact_zone (default 2 b_est: the contact widens where the pressure peaks near the
+ends), y <= L/2 (the roller ends there), and the half box reaches y = L/2 +
+max(6 H, 4 b_est) by default.
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 from ...errors import InputError
@@ -27,7 +38,7 @@ from ...problem import ContactProblem
 from ...sizing import check_zone, estimate_contact_radius
 from ..flow_lengths import check_flow_lengths, creep_length
 
-__all__ = ["BoxDiscretization", "resolve_box"]
+__all__ = ["BoxDiscretization", "resolve_box", "roller_half_width"]
 
 
 @dataclass(frozen=True)
@@ -46,6 +57,7 @@ class BoxDiscretization:
     estimated_radius: float
     creep_length: float
     refine: int
+    zone_y: float | None = None
 
 
 def resolve_box(problem: ContactProblem) -> BoxDiscretization:
@@ -60,16 +72,26 @@ def resolve_box(problem: ContactProblem) -> BoxDiscretization:
     """
     fem = problem.fem
     H = problem.layer.thickness
-    a = estimate_contact_radius(problem)
+    roller = problem.indenter.shape == "cylinder"
+    a = roller_half_width(problem) if roller else estimate_contact_radius(problem)
     h = fem.element_size or min(a / 10.0, H / 5.0)
-    zone = fem.contact_zone or 1.5 * a
+    zone = fem.contact_zone or (2.0 if roller else 1.5) * a  # a roller's contact widens at its ends
     lv = creep_length(problem)
     near = max(H, a)
     upstream = fem.upstream or zone + max(6.0 * H, 4.0 * a)
     downstream = fem.downstream or zone + max(6.0 * H, 4.0 * a, 6.0 * lv)
-    lateral = fem.domain_radius or zone + max(6.0 * H, 4.0 * a)
+    zone_y = 0.5 * problem.indenter.length if roller else None
+    lateral = fem.domain_radius or (zone_y if roller else zone) + max(6.0 * H, 4.0 * a)
     far = max(fem.far_size or H, h)
     check_zone(problem, zone, h)
+    if roller and zone >= problem.indenter.radius - problem.indenter.axial_drop(zone_y):
+        raise InputError(f"fem.contact_zone must be < the roller's radius at its ends, "
+                         f"{problem.indenter.radius - problem.indenter.axial_drop(zone_y):.4g} m, got {zone}")
+    if roller and lateral < zone_y + 2.0 * near:
+        raise InputError(
+            f"fem.domain_radius = {lateral:.4g} m (the lateral extent y of the 3d rolling model) is too "
+            f"short for the roller: it needs at least length / 2 + 2 max(H, b_est) = {zone_y + 2.0 * near:.4g} m; "
+            "raise fem.domain_radius")
     if lateral < zone + 2.0 * near:
         raise InputError(
             f"fem.domain_radius = {lateral:.4g} m (the lateral extent y of the 3d rolling model) is "
@@ -81,4 +103,14 @@ def resolve_box(problem: ContactProblem) -> BoxDiscretization:
     return BoxDiscretization(element_size=h / 2 ** fem.refine, mesh_size=h, contact_zone=zone,
                              upstream=length, downstream=length, lateral=lateral,
                              far_size=far, grading=fem.grading, estimated_radius=a,
-                             creep_length=lv, refine=fem.refine)
+                             creep_length=lv, refine=fem.refine, zone_y=zone_y)
+
+
+def roller_half_width(problem: ContactProblem) -> float:
+    """A-priori half-width b_est (m) of a roller's contact (module docstring)."""
+    R, H, L = problem.indenter.radius, problem.layer.thickness, problem.indenter.length
+    G = problem.material.relaxed_modulus
+    if problem.loading.load is None:
+        return math.sqrt(2.0 * R * problem.loading.indentation)
+    per_length = problem.loading.load / L
+    return min(math.sqrt(per_length * R / (math.pi * G)), (7.5 * per_length * R * H ** 3 / G) ** 0.2)

@@ -1,4 +1,4 @@
-"""Result of a 3D steady-rolling solve (rigid sphere, half layer y >= 0)."""
+"""Result of a 3D steady-rolling solve (rigid sphere or roller, half layer y >= 0)."""
 
 from __future__ import annotations
 
@@ -13,7 +13,8 @@ __all__ = ["SphereRollingResult"]
 
 @dataclass(frozen=True)
 class SphereRollingResult(RollingResult):
-    """Steady frictionless rolling of a rigid sphere on the layer: totals over the
+    """Steady frictionless rolling of a rigid sphere (or a roller: the same fields, its axis
+    the centre's line) on the layer: totals over the
     whole layer (both halves), in N, W and m.
 
     The attributes of :class:`~fem_reference.rolling.result.RollingResult` as totals:

@@ -1,4 +1,5 @@
-"""Monolithic discretization of 3D steady rolling of a sphere on the half layer y >= 0.
+"""Monolithic discretization of 3D steady rolling of a sphere or a roller on the half
+layer y >= 0.
 
 :func:`build_box_system` meshes the half box (:mod:`fem_reference.mesh.half_box`),
 assembles the non-symmetric system of :mod:`.forms` on the unknowns [u (P2 vector), p
@@ -77,6 +78,14 @@ class BoxSystem(RollingSystem):
     """
 
     COMPONENTS = NC
+    #: the candidate zone is a roller's rectangle |x| <= Z, y <= L/2 (else a half disk)
+    rectangular: bool = False
+
+    def zone_distance(self) -> np.ndarray:
+        """How far (m) each multiplier node lies towards the zone's edge: |x| in a roller's
+        rectangle (its ends y = L/2 are the roller's own), the radius in a half disk."""
+        x, y = self.nodes[:, 0], self.nodes[:, 1]
+        return np.abs(x) if self.rectangular else np.hypot(x, y)
 
     def dissipation(self, u: np.ndarray, w: list, V: float) -> float:
         """Power (W) dissipated by the dashpots in the half layer: sum_i int 2 G_i (dev eps -
@@ -95,7 +104,7 @@ def build_box_system(problem: ContactProblem, disc: BoxDiscretization) -> BoxSys
     t0 = time.perf_counter()
     H = problem.layer.thickness
     mesh = half_box_mesh(H, disc.contact_zone, max(disc.upstream, disc.downstream), disc.lateral,
-                         disc)
+                         disc, disc.zone_y)
     if disc.refine:
         mesh = mesh.refined(disc.refine)
     t1 = time.perf_counter()
@@ -121,16 +130,18 @@ def build_box_system(problem: ContactProblem, disc: BoxDiscretization) -> BoxSys
     S, free = restrict(S_full, fixed, offsets[-1])
     C, fbl, lam_nodes = multiplier_coupling(mesh, ue, ElementTetP1(), rf.coupling, free, offsets[-1], ub.N)
     xq = np.asarray(fbl.global_coordinates())
-    R = problem.indenter.radius
+    ind = problem.indenter
     m = asm(rf.area, fbl)[lam_nodes]
-    q = asm(rf.weighted, fbl, f=sphere_profile(xq[0], xq[1], R))[lam_nodes]
+    q = asm(rf.weighted, fbl, f=ind.surface(xq[0], xq[1]))[lam_nodes]
     mx = asm(rf.weighted, fbl, f=xq[0])[lam_nodes]
-    ms = asm(rf.weighted, fbl, f=sphere_slope(xq[0], xq[1], R))[lam_nodes]
+    ms = asm(rf.weighted, fbl, f=ind.slope(xq[0], xq[1]))[lam_nodes]
     nodes = mesh.p[:2, lam_nodes].T
 
     diag = diagonal_scale(S, free, offsets, pb, Gg)
     t2 = time.perf_counter()
-    return BoxSystem(mesh=mesh, ubasis=ub, pbasis=pb, wbasis=wb, S=S, free=free, offsets=offsets,
-                     C=C, m=np.asarray(m), q=np.asarray(q), mx=np.asarray(mx), ms=np.asarray(ms),
-                     nodes=nodes, branches=branches, scale=diag, mesh_time=t1 - t0,
-                     assembly_time=t2 - t1)
+    system = BoxSystem(mesh=mesh, ubasis=ub, pbasis=pb, wbasis=wb, S=S, free=free, offsets=offsets,
+                       C=C, m=np.asarray(m), q=np.asarray(q), mx=np.asarray(mx), ms=np.asarray(ms),
+                       nodes=nodes, branches=branches, scale=diag, mesh_time=t1 - t0,
+                       assembly_time=t2 - t1)
+    system.rectangular = disc.zone_y is not None
+    return system

@@ -8,6 +8,7 @@ import tomllib
 from pathlib import Path
 
 import numpy as np
+import pytest
 from matplotlib.figure import Figure
 
 from bem.dma import WLF, build_master_curve, fit_prony
@@ -45,7 +46,8 @@ def test_each_plot_returns_a_figure_that_saves_as_png(synthetic, tmp_path):
 
 def test_module_command_writes_figures_and_a_table_a_case_can_read(tmp_path, capsys):
     table = tmp_path / "table.csv"
-    assert main([str(EXAMPLE), "--t-ref", "20", "--out", str(tmp_path), "--table", str(table),
+    assert main([str(EXAMPLE), "--t-ref", "20", "--terms-per-decade", "1", "--out", str(tmp_path),
+                 "--table", str(table),
                  "--service-temperature", "40", "--print-material"]) == 0
     out = capsys.readouterr().out
     assert "21 isotherms" in out and "Prony fit:" in out
@@ -73,3 +75,29 @@ def test_example_data_shift_monotonically_and_fit_passively():
     fit = master.fit_prony(terms_per_decade=1)
     assert np.all(fit.material.modulus(np.logspace(-20, 20, 401)).imag >= 0)
     assert fit.rms_error_storage < 0.1  # G' superposes well; the cold isotherms' G'' does not
+
+
+def test_bem_dma_is_the_module_command(tmp_path, capsys):
+    from bem.cli import main as bem_main
+
+    bad = tmp_path / "bad.csv"
+    bad.write_text("temperature_degC,frequency_hz,G_storage_Pa\n20,1,1\n")
+    assert bem_main(["dma", str(bad), "--t-ref", "20", "--out", str(tmp_path)]) == 2
+    assert "missing column G_loss_<unit>" in capsys.readouterr().err
+    with pytest.raises(SystemExit) as exit_:
+        bem_main(["dma", "--help"])
+    assert exit_.value.code == 0 and "usage: bem dma" in capsys.readouterr().out
+
+
+def test_bem_dma_help_loads_no_numerical_library():
+    import subprocess
+
+    probe = ("import contextlib, io, sys\nfrom bem.cli import main\nout = io.StringIO()\n"
+             "with contextlib.redirect_stdout(out):\n    try:\n        main(['dma', '--help'])\n"
+             "    except SystemExit as exc:\n        assert exc.code == 0\n"
+             "print(sorted(m for m in ('numpy', 'scipy', 'matplotlib') if m in sys.modules))\n"
+             "print(out.getvalue())\n")
+    done = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, timeout=60)
+    assert done.returncode == 0, done.stderr
+    loaded, text = done.stdout.split("\n", 1)
+    assert loaded == "[]" and "usage: bem dma" in text and "2 bad input" in " ".join(text.split())

@@ -79,3 +79,43 @@ def test_the_defaults_given_explicitly_are_the_solve_without_options():
     assert other.record.linear_iterations != plain.record.linear_iterations
     assert np.array_equal(other.stick, plain.stick)
     np.testing.assert_allclose(other.force_x, plain.force_x, rtol=0, atol=1e-8 * plain.force.max())
+
+
+def test_the_linear_solves_take_their_settings_from_the_options():
+    from bem.frictional.active_set import LinearSolves
+
+    o = SolverOptions(tight_reduction=1e-9, restart=50, max_cycles=3, residual_floor=1e-14, single_from=1e-3,
+                      single_start=1e-5, filter_power=0.25)
+    solves = LinearSolves(123, o)
+    s = solves.solver
+    assert (s.dense_limit, s.rtol, s.restart, s.maxiter, s.floor, s.single_from, s.single_start) == (
+        123, 1e-9, 50, 3, 1e-14, 1e-3, 1e-5)
+    assert s.correction and solves.options is o and solves.lines.options is o
+    d = LinearSolves(7).solver
+    assert (d.rtol, d.restart, d.maxiter, d.floor, d.single_from, d.single_start) == (1e-10, 200, 10, 1e-15, 1e-4, 1e-4)
+
+
+@pytest.mark.parametrize("change", [{"loose_until": 1e-6}, {"cone_tol": 0.5}, {"slope_floor": 0.3},
+                                    {"loose_reduction": 1e-6}])
+def test_each_active_set_option_reaches_the_iteration(change):
+    """Solved by GMRES on both levels (dense_limit 0), Omega = 0.99 V / R: a change of one
+    active-set option changes the path (the history of contact, stick, misfit and
+    Omega), so the option is read where the iteration decides."""
+    problem = Problem(LAYER, Sphere(0.02), GRID, Loading(0.05, load=20.0))
+    friction = Friction(0.3, "omega", omega=0.99 * 0.05 / 0.02, dense_limit=0)
+    plain, _ = solve_friction(problem, friction, energy=False)
+    other, _ = solve_friction(problem, friction, energy=False, options=SolverOptions(**change))
+    assert other.record.history != plain.record.history
+
+
+def test_the_local_row_options_reach_the_local_solves():
+    """With local rows on every contact (``local_from`` 1), a window of 1 node takes
+    another path than the default 8 (Omega = 0.99 V / R, GMRES on both levels)."""
+    problem = Problem(LAYER, Sphere(0.02), GRID, Loading(0.05, load=20.0))
+    friction = Friction(0.3, "omega", omega=0.99 * 0.05 / 0.02, dense_limit=0)
+    lines = []
+    wide, _ = solve_friction(problem, friction, energy=False, options=SolverOptions(local_from=1),
+                             progress=lines.append)
+    narrow, _ = solve_friction(problem, friction, energy=False, options=SolverOptions(local_from=1, local_window=1))
+    assert any(line.startswith("  local rows") for line in lines)
+    assert narrow.record.history != wide.record.history

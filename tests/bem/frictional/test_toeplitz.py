@@ -140,3 +140,24 @@ def test_row_inverses_solve_the_runs_toeplitz_systems(kernels, threads, dense, M
                 assert inv.inverse(n).shape == (3, n, n)
                 assert np.abs(inv.inverse(n)[b] - Ti).max() < 1e-12 * np.abs(Ti).max()
                 assert not got[row, n:].any() and not cols[row, :, n:].any()  # 0 beyond the run
+
+
+def test_dense_columns_at_a_run_s_end_are_zero_and_grouped_runs_count_their_bytes(kernels):
+    """``columns`` by the dense inverses gives 0 for a place at or beyond the run's end (a
+    place equal to the run's length included); a :class:`GroupedRuns` counts the bytes of
+    what it applies: the padded stack when batched, the groups' inverses when grouped."""
+    from bem.frictional import RollingOperators
+    from bem.frictional.toeplitz import GroupedRuns, RowInverses
+
+    ops = RollingOperators(GRID, kernels)
+    lens = np.array([3, 5, 5, 8])
+    pos = np.array([[3, 0], [5, 4], [6, 1], [7, 8]])
+    inv = RowInverses(ops, 16, dense=True)
+    for b in range(3):
+        cols = inv.columns(b, lens, pos, np.float64)
+        assert not cols[0, 0].any() and not cols[1, 0].any() and not cols[2, 0].any() and not cols[3, 1].any()
+        assert cols[0, 1].any() and cols[1, 1].any() and cols[2, 1].any() and cols[3, 0].any()
+    grouped = GroupedRuns(RowInverses(ops, 16, dense=True, batched_upto=8), (0, 1), lens, np.float32)
+    assert grouped.stack is None and grouped.nbytes == 4 * 2 * (3 * 3 + 5 * 5 + 8 * 8)
+    batched = GroupedRuns(inv, (0, 1), lens, np.float32)
+    assert batched.nbytes == batched.stack.nbytes == 4 * 2 * 4 * 16 * 16
