@@ -16,7 +16,8 @@ over one period, with ``t = (sigma_z, tau_xz, tau_yz)`` the traction on the laye
 because the terms ``(m, n)`` and ``(-m, -n)`` are complex conjugates
 (``C(-nu) = conj C(nu)`` for a real relaxation function). Only the anti-Hermitian part
 of ``C_mn``, the loss, contributes: an elastic layer (with or without inertia) dissipates
-nothing. The traction of a nodal force spread on its patch (eq. 52) has the coefficients
+nothing, and :func:`viscous_dissipation` returns an exact 0 without summing when the
+modulus is real at every frequency the modes feel (or the speed is 0). The traction of a nodal force spread on its patch (eq. 52) has the coefficients
 of eqs. 56-59. This is independent of the contact solver's nodal collocation and of the
 upwind derivative: it integrates the layer's own continuous fields.
 
@@ -62,6 +63,8 @@ def viscous_dissipation(grid: Grid, layer: Layer, speed: float, force_z: np.ndar
     nu_x = 2 * np.pi * m / g.period_x
     nu_y = 2 * np.pi * n / g.period_y
     G = np.asarray(layer.material.modulus(-nu_x * speed), dtype=complex)
+    if speed == 0 or not G.imag.any():
+        return 0.0  # no loss at any mode felt: C_mn is Hermitian and every term vanishes
     rho_V2 = layer.inertia(speed)
     wx = np.sinc(m * g.spacing_x / g.period_x) / g.period_x
     wy = np.sinc(n * g.spacing_y / g.period_y) / g.period_y
