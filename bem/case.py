@@ -33,6 +33,10 @@ def read_case(path: str | Path, overrides: list[str] = ()) -> dict:
 
 
 def _pair(section: dict, name: str, default=None) -> tuple:
+    given = [k for k in (f"{name}_x", f"{name}_y") if k in section]
+    if name in section and given:
+        raise casefile.CaseFileError(f"[grid] gives both {name} and {given[0]}: {name} sets the x and y values at "
+                                     f"once, {given[0]} one of them; keep one")
     both = section.get(name, default)
     pair = (section.get(f"{name}_x", both), section.get(f"{name}_y", both))
     if None in pair:
@@ -42,7 +46,11 @@ def _pair(section: dict, name: str, default=None) -> tuple:
 
 def _height_map(file: str) -> HeightMap:
     try:
-        with np.load(file) as data:
+        data = np.load(file)
+        if not isinstance(data, np.lib.npyio.NpzFile):  # a .npy file holds one array
+            raise casefile.CaseFileError(f"[indenter] file {file!r} holds one array, not an NPZ archive of "
+                                         "x (m), y (m) and h (m) (numpy.savez)")
+        with data:
             missing = [k for k in ("x", "y", "h") if k not in data]
             if missing:
                 raise casefile.CaseFileError(f"[indenter] file {file!r} lacks the array(s) {', '.join(missing)}; "
@@ -152,5 +160,12 @@ def friction_from_config(config: dict):
     """The ``[friction]`` section as :class:`bem.frictional.Friction`, or ``None`` if absent."""
     from .frictional.model import Friction
 
-    sec = casefile.validate(config, "bem").get("friction")
+    checked = casefile.validate(config, "bem")
+    sec, own = checked.get("friction"), checked["indenter"].get("radius")
+    if sec is not None and "radius" in sec and own is not None and sec["radius"] != own:
+        # the radius is the axis-to-lowest-point distance of a body that has none of its own (a height
+        # map); a body with a radius rolls on it (bem.kinematics), so another one would be a second body
+        raise casefile.CaseFileError(
+            f"[friction] radius = {sec['radius']!r} m differs from [indenter] radius = {own!r} m: the friction "
+            "radius is for an indenter without one (shape = \"heightmap\"); remove it, the indenter's is used")
     return None if sec is None else Friction(**sec)

@@ -1,14 +1,25 @@
 """``bem solve CASE.toml``: one contact problem from a case file.
 
 Exit status: 0 done; 1 the solve failed or an output file could not be written (the
-result is printed first); 2 bad input or usage."""
+result is printed first); 2 bad input or usage; 130 interrupted (SIGINT or SIGTERM).
+
+All or nothing: ``--fields`` and ``--plot`` are written under temporary names and
+renamed, together with printing the result, once everything is computed; an interrupt
+before that point leaves no file and prints no result, one during it (milliseconds) is
+honoured after it. A closed standard output (``bem solve CASE --json | head``) ends the
+command quietly."""
 
 from __future__ import annotations
 
 import argparse
+import contextlib
+import io
 import json
 import math
+import os
+import signal
 import sys
+import threading
 from pathlib import Path
 
 import casefile
@@ -30,16 +41,24 @@ def _strict(value):
 
 PLOT_SUFFIXES = (".png", ".pdf", ".svg")
 EXIT_CODES = ("exit status: 0 done; 1 the solve failed or --plot/--fields could not be written (the result is "
-              "printed first); 2 bad input or usage.")
+              "printed first); 2 bad input or usage; 130 interrupted (SIGINT, SIGTERM: no output written).")
+
+
+def _partial(path: Path) -> Path:
+    """The temporary name ``path`` is written under before it is renamed (same folder and
+    suffix: the writers choose the format from it)."""
+    return path.with_name(f".{path.stem}.{os.getpid()}.partial{path.suffix}")
 
 
 def _write_outputs(args, friction, result, summary) -> list[str]:
-    """Write ``--fields`` and ``--plot``; returns the messages of those that failed."""
+    """Write ``--fields`` and ``--plot`` under their :func:`_partial` names; returns the
+    messages of those that failed."""
     import numpy as np
 
     from .plane import LineContact
 
     failed = []
+    fields, plot_path = args.fields, args.plot
     if args.fields:
         extra = {} if friction is None else {
             "force_x": result.force_x, "force_y": result.force_y, "stick": result.stick,
@@ -47,12 +66,12 @@ def _write_outputs(args, friction, result, summary) -> list[str]:
             "displacement_x": result.displacement_x, "displacement_y": result.displacement_y}
         try:
             np.savez_compressed(
-                args.fields, x=result.grid.x, y=result.grid.y, force=result.force,
+                _partial(fields), x=result.grid.x, y=result.grid.y, force=result.force,
                 pressure=result.pressure, deflection=result.deflection, gap=result.gap,
                 contact=result.contact, summary=json.dumps(summary), **extra,
             )
         except OSError as exc:
-            failed.append(f"--fields {args.fields} was not written: {exc}")
+            failed.append(f"--fields {fields} was not written: {exc}")
     if args.plot:
         from .plots import plot_frictional_contact, plot_line_contact, plot_normal_contact
 
@@ -60,15 +79,74 @@ def _write_outputs(args, friction, result, summary) -> list[str]:
         if isinstance(result, LineContact):
             plot = plot_line_contact
         try:
-            plot(result, args.plot)
+            plot(result, _partial(plot_path))
         except (OSError, ValueError) as exc:
-            failed.append(f"--plot {args.plot} was not written: {exc}")
+            failed.append(f"--plot {plot_path} was not written: {exc}")
     return failed
+
+
+class _Signals:
+    """SIGINT and SIGTERM as :class:`KeyboardInterrupt` while the work runs; recorded,
+    not raised, while the outputs are committed (:meth:`committing`)."""
+
+    def __init__(self) -> None:
+        self.deferred = None
+        self.commit = False
+        self.previous = {}
+        if threading.current_thread() is threading.main_thread():  # handlers live in the main thread only
+            self.previous = {s: signal.signal(s, self._handle) for s in (signal.SIGINT, signal.SIGTERM)}
+
+    def _handle(self, signum, frame) -> None:
+        if self.commit:
+            self.deferred = signum
+            return
+        raise KeyboardInterrupt(signal.Signals(signum).name)
+
+    @contextlib.contextmanager
+    def committing(self):
+        self.commit = True
+        try:
+            yield
+        finally:
+            self.commit = False
+
+    def restore(self) -> None:
+        for s, handler in self.previous.items():
+            signal.signal(s, handler)
+
+
+def _commit(text: str, paths, failed: list[str], progress) -> int:
+    """Print ``text`` and rename the partial files of ``paths`` (those not in ``failed``)
+    to their names; the exit status (1 if an output failed)."""
+    try:
+        sys.stdout.write(text)
+        sys.stdout.flush()
+    except BrokenPipeError:  # the reader went away: quiet, and no second error at exit
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+    for path in paths:
+        if path and not any(str(path) in m for m in failed):
+            try:
+                os.replace(_partial(path), path)
+            except OSError as exc:
+                failed.append(f"{path} was not written: {exc}")
+                continue
+            progress(f"wrote {path}")
+    _discard([p for p in paths if p and any(str(p) in m for m in failed)])  # a half-written file
+    for message in failed:
+        print(f"bem: error: the result above was computed, but {message}", file=sys.stderr)
+    return 1 if failed else 0
+
+
+def _discard(paths) -> None:
+    for path in paths:
+        if path:
+            with contextlib.suppress(OSError):
+                os.remove(_partial(path))
 
 
 def main(argv: list[str] | None = None) -> int:
     """Exit status: 0 done, 1 the solve failed or an output could not be written (the
-    result is printed first), 2 bad input or usage."""
+    result is printed first), 2 bad input or usage, 130 interrupted (module docstring)."""
     parser = argparse.ArgumentParser(prog="bem", description=__doc__.replace("``", ""))
     sub = parser.add_subparsers(dest="command", required=True)
     s = sub.add_parser("solve", help="solve a case file",
@@ -85,6 +163,9 @@ def main(argv: list[str] | None = None) -> int:
     s.add_argument("--fields", type=Path, metavar="FILE.npz",
                    help="save nodal coordinates and fields (NPZ); default: not saved")
     s.add_argument("--quiet", action="store_true", help="no progress lines on stderr")
+    s.add_argument("--error-estimate", action="store_true",
+                   help="with friction: solve again on the grid coarsened by 2 and 4 and give each frictional "
+                        "figure's Richardson limit and grid error (about twice the cost); default: off")
     sub.add_parser("dma", add_help=False, help="DMA CSV to master curve, Prony fit and figures "
                    "(bem dma --help; docs/materials.md)")
     argv = sys.argv[1:] if argv is None else list(argv)
@@ -93,7 +174,19 @@ def main(argv: list[str] | None = None) -> int:
 
         return dma_main(argv[1:], prog="bem dma")
     args = parser.parse_args(argv)
+    signals = _Signals()
+    try:
+        return _run(args, signals)
+    except KeyboardInterrupt as exc:
+        _discard((args.fields, args.plot))
+        print(f"bem: interrupted ({exc or 'SIGINT'}): nothing written", file=sys.stderr)
+        return 130
+    finally:
+        signals.restore()
 
+
+def _run(args, signals: _Signals) -> int:
+    """The ``solve`` command on parsed ``args``; its exit status."""
     from .case import friction_from_config, problem_from_config, read_case
     from .contact import ContactError
     from .driver import solve
@@ -109,18 +202,39 @@ def main(argv: list[str] | None = None) -> int:
         config = read_case(args.case, args.set)
         problem, auto = problem_from_config(config)
         friction = friction_from_config(config)
+        if args.error_estimate and friction is None:
+            raise ValueError("--error-estimate estimates the grid error of the frictional figures: "
+                             "the case needs a [friction] section")
     except ValueError as exc:  # casefile.CaseFileError, and the rules of bem's own inputs
         print(f"bem: error: {exc}", file=sys.stderr)
         return 2
+    estimate = None
     try:
         result = solve(problem, friction, progress=progress, grow=auto and friction is None)
+        if args.error_estimate:
+            from .frictional.grid_error import estimate_grid_error
+
+            estimate = estimate_grid_error(problem, friction, fine=result, progress=progress)
     except ValueError as exc:
         print(f"bem: error: {exc}", file=sys.stderr)
         return 2
     except ContactError as exc:
         print(f"bem: error: {type(exc).__name__}: {exc}", file=sys.stderr)
         return 1
-    summary = _strict({**result.summary(), "timings_s": result.record.times})
+    summary = _strict({**result.summary(), "timings_s": result.record.times,
+                       **({"grid_error": estimate.summary()} if estimate else {})})
+    failed = _write_outputs(args, friction, result, summary)
+    text = io.StringIO()
+    with contextlib.redirect_stdout(text):
+        _print_result(args, problem, friction, result, summary, LineContact)
+        if estimate is not None and not args.json:
+            print("\n".join(estimate.lines()))
+    with signals.committing():
+        return _commit(text.getvalue(), (args.fields, args.plot), failed, progress)
+
+
+def _print_result(args, problem, friction, result, summary, LineContact) -> None:
+    """The result as JSON or text on standard output."""
     if args.json:
         print(json.dumps(summary, indent=2, allow_nan=False))
     elif isinstance(result, LineContact):
@@ -150,14 +264,6 @@ def main(argv: list[str] | None = None) -> int:
             print(f"driving force       {result.driving_force:.6g} N")
             print(f"driving torque      {result.driving_torque:.6g} N m")
             print(f"stick fraction      {result.stick_fraction:.4g}")
-    sys.stdout.flush()
-    failed = _write_outputs(args, friction, result, summary)
-    for message in failed:
-        print(f"bem: error: the result above was computed, but {message}", file=sys.stderr)
-    for path in (args.fields, args.plot):
-        if path and not any(str(path) in m for m in failed):
-            progress(f"wrote {path}")
-    return 1 if failed else 0
 
 
 if __name__ == "__main__":

@@ -29,7 +29,7 @@ from .energy import viscous_dissipation
 from .grid import Grid
 from .operator import ComplianceOperator
 from .plane import LineContact, LineGrid, edges_along, line_dissipation, line_kernel
-from .problem import Problem, compute_kernels
+from .problem import Problem, check_kernel_memory, compute_kernels
 from .result import NormalContact
 from .speed import check_subsonic
 
@@ -96,6 +96,7 @@ def solve(problem: Problem, friction: Friction | None = None, *,
         Bad input (``grow`` with friction, ``options`` without, kernels of another grid),
         or a speed at or above the layer's shear-wave speed.
     """
+    _check_inputs(problem, friction, kernels)
     if friction is not None:
         if grow:
             raise ValueError("grow widens the region of a frictionless solve only: give grid.half_width "
@@ -108,7 +109,7 @@ def solve(problem: Problem, friction: Friction | None = None, *,
     if options is not None:
         raise ValueError("options tune the frictional solver: give them with friction")
     p = problem
-    given = None if kernels is None else kernels["ww"]
+    given = None if kernels is None else kernels["ww"]  # present: _check_inputs
     need = (2 * p.grid.nodes_y - 1, 2 * p.grid.nodes_x - 1)
     if given is not None and np.shape(given) != need:
         raise ValueError(f"kernels['ww'] has shape {np.shape(given)}, a grid of {p.grid.nodes_x} x "
@@ -142,12 +143,32 @@ def solve(problem: Problem, friction: Friction | None = None, *,
         return (LineContact if p.plane_strain else NormalContact)(**values)
 
 
+def _check_inputs(problem, friction, kernels) -> None:
+    """Raise ``TypeError``/``ValueError`` naming the argument when ``problem`` is not a
+    :class:`Problem` or ``kernels`` lacks a block the solve reads."""
+    if not isinstance(problem, Problem):
+        raise TypeError(f"problem must be a bem.problem.Problem, got {problem!r}")
+    if kernels is None:
+        return
+    if not isinstance(kernels, dict):
+        raise TypeError(f"kernels must be a dict of kernel tables (bem.problem.compute_kernels), got {kernels!r}")
+    from .spectral import BLOCKS
+
+    need = ("ww",) if friction is None else tuple(BLOCKS)
+    missing = [b for b in need if b not in kernels]
+    if missing:
+        raise ValueError(f"kernels lacks the block(s) {', '.join(map(repr, missing))}: a "
+                         f"{'frictionless' if friction is None else 'frictional'} solve reads "
+                         f"{', '.join(map(repr, need))} (bem.problem.compute_kernels)")
+
+
 def _kernel(p: Problem, progress) -> tuple[np.ndarray, float]:
     """The ``"ww"`` kernel table of the problem's grid, layer and speed, and its seconds."""
     if not p.plane_strain:
         kernels, seconds = compute_kernels(p, ("ww",), progress)
         return kernels["ww"], seconds
     check_subsonic(p.layer, p.loading.speed)
+    check_kernel_memory(p.grid)
     t0 = time.perf_counter()
     table = line_kernel(p.grid, p.layer, p.loading.speed)
     seconds = time.perf_counter() - t0

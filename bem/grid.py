@@ -7,12 +7,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ._checks import integer, real
+
 __all__ = ["Grid"]
 
 
 def _positive(name: str, value: float, unit: str) -> None:
-    if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
-        raise ValueError(f"{name} must be > 0 {unit}, got {value!r}")
+    real(name, value, unit)
 
 
 @dataclass(frozen=True)
@@ -51,13 +52,12 @@ class Grid:
 
     def __post_init__(self) -> None:
         for ax in "xy":
+            for name, unit in ((f"spacing_{ax}", "m"), (f"period_{ax}", "m")):
+                object.__setattr__(self, name, real(name, getattr(self, name), unit))
+            for name in (f"truncation_{ax}", f"nodes_{ax}"):
+                object.__setattr__(self, name, integer(name, getattr(self, name)))
             a, L = getattr(self, f"spacing_{ax}"), getattr(self, f"period_{ax}")
             nt, kk = getattr(self, f"truncation_{ax}"), getattr(self, f"nodes_{ax}")
-            _positive(f"spacing_{ax}", a, "m")
-            _positive(f"period_{ax}", L, "m")
-            for name, val in ((f"truncation_{ax}", nt), (f"nodes_{ax}", kk)):
-                if not (isinstance(val, (int, np.integer)) and val >= 1):
-                    raise ValueError(f"{name} must be an integer >= 1, got {val!r}")
             if (kk - 1) * a >= L:
                 raise ValueError(
                     f"nodes_{ax} = {kk} at spacing_{ax} = {a} m spans {(kk - 1) * a} m, "

@@ -14,12 +14,14 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.interpolate import RegularGridInterpolator
 
+from ._checks import real
+
 __all__ = ["Sphere", "Paraboloid", "Cylinder", "LineCylinder", "HeightMap"]
 
 
-def _check_radius(radius: float) -> None:
-    if not (isinstance(radius, (int, float)) and math.isfinite(radius) and radius > 0):
-        raise ValueError(f"radius must be > 0 m, got {radius!r}")
+def _check_radius(indenter, name: str = "radius") -> None:
+    """Check the length ``name`` (m, > 0) of ``indenter`` and store it as a float."""
+    object.__setattr__(indenter, name, real(name, getattr(indenter, name), "m"))
 
 
 @dataclass(frozen=True)
@@ -29,7 +31,7 @@ class Sphere:
     radius: float
 
     def __post_init__(self) -> None:
-        _check_radius(self.radius)
+        _check_radius(self)
 
     def profile(self, X, Y):
         r2 = np.asarray(X, float) ** 2 + np.asarray(Y, float) ** 2
@@ -51,7 +53,7 @@ class Paraboloid:
     radius: float
 
     def __post_init__(self) -> None:
-        _check_radius(self.radius)
+        _check_radius(self)
 
     def profile(self, X, Y):
         return (np.asarray(X, float) ** 2 + np.asarray(Y, float) ** 2) / (2 * self.radius)
@@ -60,10 +62,14 @@ class Paraboloid:
         return np.asarray(X, float) / self.radius
 
 
-def _positive_length(name: str, value, rule: str = "> 0") -> None:
-    ok = isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
-    if not (ok and (value > 0 if rule == "> 0" else value >= 0)):
-        raise ValueError(f"{name} must be finite and {rule} m, got {value!r}")
+def _positive_length(indenter, name: str, rule: str = ">0") -> None:
+    """Check the length ``name`` (m, finite, ``rule``) of ``indenter``; store it as a float."""
+    value = getattr(indenter, name)
+    try:
+        object.__setattr__(indenter, name, real(name, value, "m", rule))
+    except ValueError as exc:  # NotANumber too: the same words, its type kept
+        words = "> 0" if rule == ">0" else ">= 0"
+        raise type(exc)(f"{name} must be finite and {words} m, got {value!r}") from None
 
 
 @dataclass(frozen=True)
@@ -105,9 +111,9 @@ class Cylinder:
     crown_radius: float | None = None
 
     def __post_init__(self) -> None:
-        _check_radius(self.radius)
-        _positive_length("length", self.length)
-        _positive_length("edge_radius", self.edge_radius, ">= 0")
+        _check_radius(self)
+        _positive_length(self, "length")
+        _positive_length(self, "edge_radius", ">=0")
         if self.edge_radius > self.length / 2:
             raise ValueError(f"edge_radius must be <= length / 2 = {self.length / 2!r} m (the two end "
                              f"roundings meet at mid-length), got {self.edge_radius!r}")
@@ -115,7 +121,7 @@ class Cylinder:
             raise ValueError(f"edge_radius must be < radius = {self.radius!r} m (an end rounding within the "
                              f"roller), got {self.edge_radius!r}")
         if self.crown_radius is not None:
-            _positive_length("crown_radius", self.crown_radius)
+            _positive_length(self, "crown_radius")
             if self.edge_radius > 0:
                 raise ValueError("give crown_radius or edge_radius, not both: a crowned roller's profile is "
                                  f"one arc end to end (got crown_radius = {self.crown_radius!r} m, "
@@ -159,7 +165,7 @@ class LineCylinder:
     radius: float
 
     def __post_init__(self) -> None:
-        _check_radius(self.radius)
+        _check_radius(self)
 
     def profile(self, X, Y=None):
         X = np.asarray(X, float)
@@ -190,7 +196,14 @@ class HeightMap:
     _interp: tuple = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
+        for name in ("x", "y", "h"):
+            kind = np.asarray(getattr(self, name)).dtype.kind
+            if kind not in "iuf":
+                raise ValueError(f"{name} must hold real numbers (m), got an array of dtype "
+                                 f"{np.asarray(getattr(self, name)).dtype}")
         x, y, h = (np.asarray(a, float) for a in (self.x, self.y, self.h))
+        if x.ndim == 0 or y.ndim == 0:
+            raise ValueError(f"x and y must be 1-D arrays (m), got x of shape {x.shape}, y of shape {y.shape}")
         if x.ndim != 1 or y.ndim != 1 or h.shape != (y.size, x.size):
             raise ValueError(f"h must have shape (len(y), len(x)) = {(y.size, x.size)}, got {h.shape}")
         for name, a in (("x", x), ("y", y)):

@@ -30,6 +30,40 @@ and lets odd and even nodes decouple.
 Because the compliance depends on node offsets only, the differenced compliance is
 again an offset table, ``Kd[dy, dx] = (K[dy, dx + 1] - K[dy, dx]) / a_x``, applied like
 any kernel (by FFT or densely).
+
+Rolling geometry (:func:`rolling_geometry`, ``[friction] kinematics``). The frictional
+solve needs, at every node, the gap profile ``g`` (m), the arm (-) that turns a normal
+force ``N`` (its vertical component, the one loading the layer) into its horizontal
+projection ``N arm`` on the indenter, and the rolling radius ``l`` (m) that sets the
+indenter's horizontal surface speed ``Omega l`` in ``w_x`` and the moment arm of a
+tangential force. The energy balance of the rolling body (docs/derivations.md, section
+"Rolling kinematics") closes exactly when ``arm = dg/dx`` and ``l`` is the same in the
+slip velocity and the torque; three consistent or reproducible choices:
+
+* ``paper``: the paper as printed: exact profile (eq. 13), ``arm = x / R`` (sec. 9),
+  ``l = sqrt(R^2 - y^2)`` (eq. 14, the distance from the axis, not its horizontal part).
+  The equilibrium figure misses the energy one by ``sum N (dg/dx - x / R)``, about
+  ``r^2 / 2 R^2`` of ``R_r`` (1.3 % in the paper's section 11).
+* ``small_slope``: everything to first order in the slope: the profile's ``x`` part
+  ``x^2 / 2R`` (a sphere becomes the paraboloid ``r^2 / 2R``), ``arm = x / R``, ``l = R``.
+* ``exact``: the body's own surface: for a body of revolution about the ``y`` axis
+  (sphere, roller) at the depth ``D = R - g = sqrt(rho(y)^2 - x^2)`` below the axis, a
+  radial normal force with vertical component ``N`` has the horizontal one ``N x / D``
+  (``arm = x / D = dg/dx``), and the surface moves horizontally at ``Omega D`` (``l = D``).
+  The layer (small strain) is loaded as in the paper by ``N`` vertically and by the
+  friction forces horizontally; the horizontal part ``N x / D`` of the normal force acts
+  on the body's equilibrium and does no work (the relative velocity along the normal is
+  zero to the small-strain order). A paraboloid is itself the small-slope body (its
+  normals do not meet one axis) and a height map has only its given arm: for both,
+  ``exact`` is ``small_slope`` with their own profile.
+
+``paper`` is the default, for now: the frictionless solver uses the same exact profile
+with the arm ``x / R``, so ``mu -> 0`` gives back the frictionless solution, and the
+paper's figures are reproduced. ``exact`` solves the body the user described (eq. 13 for
+a sphere) with two rolling-resistance figures that agree to the discretisation error;
+it is not the default yet because the frictionless solver does not share its arm (a
+frictional solve at ``mu -> 0`` then differs from the frictionless one by the slope
+term) and the towed mode at very small ``mu`` can cycle between stick/slip sets.
 """
 
 from __future__ import annotations
@@ -38,7 +72,13 @@ import math
 
 import numpy as np
 
-__all__ = ["upwind_table", "upwind_field", "rolling_radius", "indenter_radius"]
+__all__ = ["KINEMATICS", "DEFAULT_KINEMATICS", "upwind_table", "upwind_field", "rolling_radius",
+           "indenter_radius", "rolling_geometry"]
+
+#: the rolling kinematics of the frictional solve (module docstring)
+KINEMATICS = ("paper", "small_slope", "exact")
+#: the default: the paper's kinematics, the frictionless solver's geometry (module docstring)
+DEFAULT_KINEMATICS = "paper"
 
 
 def upwind_table(kernel: np.ndarray, spacing_x: float) -> np.ndarray:
@@ -86,3 +126,35 @@ def rolling_radius(indenter, Y: np.ndarray, override: float | None = None) -> np
     if override is None and type(indenter).__name__ in ("Sphere", "Paraboloid"):
         return np.sqrt(np.maximum(R * R - Y * Y, 0.0))
     return np.full(Y.shape, R)
+
+
+#: bodies of revolution about the ``y`` axis through the centre (depth ``R - g`` below it)
+_REVOLUTION = ("Sphere", "Cylinder", "LineCylinder")
+
+
+def rolling_geometry(indenter, X, Y, kinematics: str = DEFAULT_KINEMATICS, override: float | None = None):
+    """``(profile, arm, ell)`` at the nodes ``X, Y`` (m) for one of :data:`KINEMATICS`
+    (module docstring): the gap profile (m, ``inf`` where the body cannot touch), the
+    horizontal projection of a unit vertical normal force (-) and the rolling radius (m).
+    ``override`` (m): the radius for indenters without one (height maps); the body is then
+    treated as a height map."""
+    if kinematics not in KINEMATICS:
+        raise ValueError(f"kinematics must be one of {', '.join(KINEMATICS)}, got {kinematics!r}")
+    R = indenter_radius(indenter, override)
+    X, Y = np.broadcast_arrays(np.asarray(X, float), np.asarray(Y, float))
+    name = type(indenter).__name__ if override is None else "HeightMap"
+    if kinematics == "paper":
+        return indenter.profile(X, Y), indenter.rolling_arm(X, Y), rolling_radius(indenter, Y, override)
+    if name not in _REVOLUTION:
+        return indenter.profile(X, Y), indenter.rolling_arm(X, Y), np.full(X.shape, R)
+    if kinematics == "small_slope":
+        if name == "Sphere":  # its paraboloid, written as bem.indenters.Paraboloid writes it
+            g = (X**2 + Y**2) / (2 * R)
+        else:
+            g = X**2 / (2 * R) + (indenter.axial_drop(Y) if name == "Cylinder" else 0.0)
+        return g, X / R, np.full(X.shape, R)
+    g = indenter.profile(X, Y)
+    depth = np.where(np.isfinite(g), R - g, R)  # D = sqrt(rho^2 - x^2); R where it cannot touch
+    with np.errstate(divide="ignore", invalid="ignore"):
+        arm = np.where(np.isfinite(g) & (depth > 0), X / depth, 0.0)
+    return g, arm, depth

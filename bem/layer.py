@@ -39,10 +39,16 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.linalg import expm
 
+from ._checks import real
+
 __all__ = [
     "Layer", "system_matrix", "surface_compliance", "surface_compliance_expm", "normal_compliance",
     "normal_compliance_outer", "compliance_blocks",
 ]
+
+
+#: the thickest layer (m): ``H^3`` and its products with the wavenumbers stay finite doubles
+MAX_THICKNESS = 1e100
 
 
 @dataclass(frozen=True)
@@ -65,10 +71,11 @@ class Layer:
     density: float = 0.0
 
     def __post_init__(self) -> None:
-        if not (isinstance(self.thickness, (int, float)) and math.isfinite(self.thickness) and self.thickness > 0):
-            raise ValueError(f"thickness must be > 0 m, got {self.thickness!r}")
-        if not (isinstance(self.density, (int, float)) and math.isfinite(self.density) and self.density >= 0):
-            raise ValueError(f"density must be >= 0 kg/m^3, got {self.density!r}")
+        object.__setattr__(self, "thickness", real("thickness", self.thickness, "m"))
+        if self.thickness > MAX_THICKNESS:  # the series of the compliance hold H^3 (m^3), a double
+            raise ValueError(f"thickness must be <= {MAX_THICKNESS:g} m (a layer thicker than its period "
+                             f"is already a half-space to every mode of the grid), got {self.thickness!r}")
+        object.__setattr__(self, "density", real("density", self.density, "kg/m^3", ">=0"))
         if not callable(getattr(self.material, "modulus", None)):
             raise TypeError(f"material must have a modulus(omega) method, got {self.material!r}")
 

@@ -19,6 +19,8 @@ from typing import Callable, Union
 
 import numpy as np
 
+from ._checks import NotANumber, real
+
 __all__ = [
     "Elastic",
     "ThreeParameterSolid",
@@ -30,14 +32,12 @@ __all__ = [
 
 
 def _real(name: str, value, unit: str, *, allow_zero: bool = False) -> float:
-    """Return ``value`` as a float after checking it is finite and > 0 (or >= 0)."""
-    if isinstance(value, bool) or not isinstance(value, numbers.Real) or not math.isfinite(value):
-        raise ValueError(f"{name} must be a finite real number ({unit}), got {value!r}")
-    value = float(value)
-    if value < 0 or (value == 0 and not allow_zero):
-        rule = ">= 0" if allow_zero else "> 0"
-        raise ValueError(f"{name} must be {rule} {unit}, got {value!r}")
-    return value
+    """Return ``value`` as a float after checking it is a finite real number (not a bool;
+    numpy scalars welcome) and > 0 (or >= 0)."""
+    number = not isinstance(value, (bool, np.bool_)) and isinstance(value, numbers.Real)
+    if not (number and math.isfinite(value)):
+        raise (ValueError if number else NotANumber)(f"{name} must be a finite real number ({unit}), got {value!r}")
+    return real(name, value, unit, ">=0" if allow_zero else ">0")
 
 
 def _omega(omega) -> np.ndarray:
@@ -226,11 +226,10 @@ def _check_table(omega, storage, loss, where: Callable[[int], str]) -> None:
             )
 
 
-def _column(name: str, value) -> tuple[float, ...]:
-    a = np.asarray(value, dtype=float)
-    if a.ndim != 1:
-        raise ValueError(f"{name} must be a 1-D sequence, got an array of shape {a.shape}")
-    return tuple(a.tolist())
+def _column(name: str, value, unit: str) -> tuple[float, ...]:
+    if isinstance(value, (str, bytes)) or np.ndim(value) != 1:
+        raise ValueError(f"{name} must be a 1-D sequence, got an array of shape {np.shape(value)}")
+    return tuple(real(f"{name}[{i}]", v, unit, "any", finite=False) for i, v in enumerate(value))
 
 
 @dataclass(frozen=True)
@@ -269,8 +268,8 @@ class MasterCurveTable:
     _log_loss: bool = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
-        for name in ("omega", "storage", "loss"):
-            object.__setattr__(self, name, _column(name, getattr(self, name)))
+        for name, unit in (("omega", "rad/s"), ("storage", "Pa"), ("loss", "Pa")):
+            object.__setattr__(self, name, _column(name, getattr(self, name), unit))
         _check_table(self.omega, self.storage, self.loss, lambda i: f"row {i}")
         object.__setattr__(self, "_log_loss", min(self.loss) > 0)
 

@@ -29,6 +29,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ._checks import integer, real
 from .layer import Layer, normal_compliance_outer
 from .result import NormalContact
 from .spectral import chirp_sum
@@ -40,8 +41,7 @@ __all__ = [
 
 
 def _positive(name: str, value, unit: str) -> None:
-    if isinstance(value, bool) or not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
-        raise ValueError(f"{name} must be > 0 {unit}, got {value!r}")
+    real(name, value, unit)
 
 
 @dataclass(frozen=True)
@@ -77,12 +77,10 @@ class LineGrid:
     nodes: int
 
     def __post_init__(self) -> None:
-        _positive("spacing", self.spacing, "m")
-        _positive("period", self.period, "m")
+        for name in ("spacing", "period"):
+            object.__setattr__(self, name, real(name, getattr(self, name), "m"))
         for name in ("truncation", "nodes"):
-            val = getattr(self, name)
-            if isinstance(val, bool) or not (isinstance(val, (int, np.integer)) and val >= 1):
-                raise ValueError(f"{name} must be an integer >= 1, got {val!r}")
+            object.__setattr__(self, name, integer(name, getattr(self, name)))
         if (self.nodes - 1) * self.spacing >= self.period:
             raise ValueError(
                 f"nodes = {self.nodes} at spacing = {self.spacing} m span {(self.nodes - 1) * self.spacing} m, "

@@ -111,6 +111,11 @@ def validate(data: dict, tool: str | None = None, *, source: str = "case", folde
     return copy.deepcopy(_for_tool(source, out, tool) if tool else out)
 
 
+def _clip(text: str, limit: int = 80) -> str:
+    """``text`` quoted, cut to ``limit`` characters with its length said when longer."""
+    return repr(text) if len(text) <= limit else f"{text[:limit]!r}... ({len(text)} characters)"
+
+
 def parse_override(text: str) -> tuple[str, str, object]:
     """``"section.key=value"`` as ``(section, key, value)``; the value is parsed as TOML,
     or kept as a bare string where the key takes a string or a path.
@@ -123,7 +128,7 @@ def parse_override(text: str) -> tuple[str, str, object]:
     name, sep, raw = text.partition("=")
     sec, dot, key = name.strip().partition(".")
     if not sep or not dot or not sec or not key or "." in key:
-        raise CaseFileError(f"--set expects section.key=value, got {text!r}")
+        raise CaseFileError(f"--set expects section.key=value (one dot in the name), got {_clip(text)}")
     raw = raw.strip()
     try:
         value = tomllib.loads(f"v = {raw}")["v"]
@@ -143,7 +148,7 @@ def parse_override(text: str) -> tuple[str, str, object]:
 
 def apply_overrides(data: dict, overrides: Iterable[str]) -> dict:
     """``data`` with each ``section.key=value`` of ``overrides`` set (a new dict)."""
-    out = copy.deepcopy(data)
+    out = {name: dict(table) if isinstance(table, dict) else table for name, table in data.items()}
     for text in overrides:
         sec, key, value = parse_override(text)
         table = out.setdefault(sec, {})
@@ -162,14 +167,28 @@ def read(path: str | Path, overrides: Iterable[str] = (), tool: str | None = Non
     if not path.is_file():
         raise CaseFileError(f"case file {str(path)!r} is a folder, not a file")
     try:
-        data = tomllib.loads(path.read_text(encoding="utf-8"))
-    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
+        text = path.read_text(encoding="utf-8")
+    except UnicodeDecodeError as exc:
+        raise CaseFileError(f"{path}: not a UTF-8 text file (TOML is UTF-8; byte {exc.object[exc.start]:#04x} at "
+                            f"offset {exc.start}); save it as UTF-8") from None
+    except OSError as exc:
+        raise CaseFileError(f"{path}: cannot be read: {exc.strerror}") from None
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
         raise CaseFileError(f"{path}: not a valid TOML file: {exc}") from None
+    except RecursionError:
+        raise CaseFileError(f"{path}: its arrays or inline tables are nested too deeply to read; a case file "
+                            "nests a few levels at most") from None
     try:
         data = apply_overrides(data, overrides)
     except CaseFileError as exc:
         raise CaseFileError(f"{path}: {exc}") from None
-    return validate(data, tool, source=str(path), folder=path.parent)
+    try:
+        return validate(data, tool, source=str(path), folder=path.parent)
+    except RecursionError:
+        raise CaseFileError(f"{path}: its tables are nested too deeply to check; a case file nests a few "
+                            "levels at most") from None
 
 
 def check_output(path: str | Path | None, suffixes: tuple, option: str) -> Path | None:

@@ -214,6 +214,11 @@ SCHEMA: tuple = (
                 "rolling, 0 pure sliding", ("bem",)),
             Key("radius", "number", "m", "axis to lowest point, for heightmap indenters", ("bem",),
                 rule=">0", default_doc="the indenter's radius"),
+            Key("kinematics", "string", "-", "rolling geometry: the indenter's exact surface for the gap, the "
+                "normal forces' arm and the rolling radius (consistent energy balance); all to first order "
+                "in the slope (a sphere as the paraboloid; consistent); or the paper's eq. 14 with the arm "
+                "x / R on the exact sphere (reproduces its figures; R_r about r^2 / 2R^2 below the energy "
+                "figure)", ("bem",), default="paper", choices=("exact", "small_slope", "paper")),
             Key("max_iter", "integer", "-", "active-set iterations allowed", ("bem",), default=300, rule=">0"),
             Key("direction_tol", "number", "-", "convergence of the slip law", ("bem",), default=1e-7, rule=">0"),
             Key("set_tol", "number", "-", "accepted stick/slip border violation in a two-state cycle",

@@ -30,12 +30,11 @@ __all__ = ["main"]
 DEFAULTS_3D = """\
 3d rolling (fem.model = "3d", loading.speed > 0) at its default mesh (element size
 min(a_est / 10, H / 5), grading 0.3, far size H), measured on the paper's section 11
-sphere (examples/paper-section11-frictionless.toml): 46k unknowns, 19 s and 1.6 GB with
-MKL Pardiso, R_r 1.9% below the BEM's 3.0256 N (indentation within 0.05%). Finer
-meshes close in (times on a loaded machine): element_size 5.72e-4 with grading 0.2 and
-far_size 3.33e-3, 73k unknowns, -1.3% in 45 s; with grading 0.15 and far_size 2.5e-3,
-119k, -1.0% in 76 s and 4.1 GB; the rolling-sphere-3d case's finest level, 172k, -0.7%
-and 6.7 GB (docs/derivations.md section 9)."""
+sphere (examples/paper-section11-frictionless.toml): 46k unknowns, 21 s and 1.5 GB with
+MKL Pardiso on a loaded machine, R_r 0.08% and D/V 0.12% below the BEM's 3.0256 N and
+3.0751 N (indentation within 0.005%). The rolling-sphere-3d cases refine the whole
+mesh: 89k unknowns, R_r -0.26%, 2.8 GB; 172k, -0.09%, 6.4 GB (docs/derivations.md
+section 9)."""
 
 
 EXIT_CODES = """\

@@ -158,7 +158,9 @@ class MinresSolver:
         """MINRES stops on the preconditioned residual, which can sit far below the true
         one (measured 1.9e-5 true at rtol 1e-8 on an axisymmetric case); so solve again
         for the true residual's correction until it meets ``rtol`` (iterative
-        refinement, a few rounds)."""
+        refinement, a few rounds). A true residual still above ``10 rtol`` raises
+        :class:`LinearSolverError`: the contact would follow the error (measured on a
+        sphere on a layer: a residual of 1e-2 moved the peak pressure by 2 %)."""
         count = [0]
 
         def cb(_):
@@ -177,7 +179,7 @@ class MinresSolver:
                 break
         self.iterations += count[0]
         self.max_residual = max(self.max_residual, rel)
-        if info != 0 or not np.isfinite(rel) or rel > 1e3 * self.rtol:
+        if info != 0 or not np.isfinite(rel) or rel > 10 * self.rtol:
             raise LinearSolverError(f"MINRES stopped with info={info} after {count[0]} iterations, "
                                     f"relative residual {rel:.2e} (rtol {self.rtol:.1e})")
         return x

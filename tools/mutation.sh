@@ -49,7 +49,7 @@ default_tests() {
         bem/layer.py) echo "tests/bem/test_layer*.py" ;;
         bem/*.py) echo "tests/bem/test_${name}*.py" ;;
         fem_reference/*) echo "tests/fem_reference/" ;;
-        verification/metrics.py) echo "tests/verification/test_metrics.py tests/verification/kinds/test_stationary.py" ;;
+        verification/metrics.py|bem/convergence.py) echo "tests/verification/test_metrics.py tests/verification/kinds/test_stationary.py" ;;
         verification/*) echo "tests/verification/" ;;
         sweeps/*) echo "tests/sweeps/" ;;
         casefile/*) echo "tests/casefile/" ;;

@@ -48,17 +48,17 @@ PLANTED = {
     ),
     "cylinder rolling arm -x / 2R": (
         "bem/indenters.py",
-        [("g, np.inf)\n\n    def rolling_arm(self, X, Y):\n        return np.asarray(X, float) / self.radius",
-          "g, np.inf)\n\n    def rolling_arm(self, X, Y):\n        return -np.asarray(X, float) / (2 * self.radius)", 1)],
+        [("np.inf)\n\n    def rolling_arm(self, X, Y):\n        return np.asarray(X, float) / self.radius",
+          "np.inf)\n\n    def rolling_arm(self, X, Y):\n        return -np.asarray(X, float) / (2 * self.radius)", 1)],
         ["tests/bem/test_indenters.py::test_cylinder_is_a_circle_in_x_and_infinite_beyond_its_ends"],
     ),
     "Richardson ratio hard-coded to 2": (
-        "verification/metrics.py",
+        "bem/convergence.py",
         [("math.log(ratio)", "math.log(2.0)", 1), ("ratio**p - 1", "2.0**p - 1", 1)],
         RICHARDSON,
     ),
     "Richardson error_finest replaced": (
-        "verification/metrics.py",
+        "bem/convergence.py",
         [("abs(ext - q3), True)", "abs(d2), True)", 1)],
         RICHARDSON,
     ),
@@ -99,7 +99,7 @@ for name, module, edits, tests in spec:
             path.write_text(text)
         if name in results:
             continue
-    sys.stdout.flush()
+    print(f"=== RUN {name}", flush=True)
     pid = os.fork()
     if pid == 0:
         import bem, fem_reference, verification
@@ -156,8 +156,9 @@ def run() -> int:
         print(f"FAILED the driver exited with {out.returncode}")
         return 1
     results = json.loads(lines[-1].split(" ", 1)[1])
+    logs = {part.split("\n", 1)[0]: part for part in out.stdout.split("=== RUN ")[1:]}
     if results[CONTROL] != 0:
-        print(out.stdout[-4000:])
+        print(logs.get(CONTROL, out.stdout)[-4000:])
         print(f"FAILED control: the named tests fail on the unmodified copy (pytest exit {results[CONTROL]})")
         return 1
     bad = 0
@@ -166,13 +167,12 @@ def run() -> int:
         if isinstance(got, str):
             print(f"TEXT NO LONGER APPLIES {name!r}: {got}; update the planted text in tools/planted_bugs.py")
         elif got != 1:
+            print(logs.get(name, "")[-3000:])
             print(f"NOT CAUGHT {name!r}: pytest exit {got} (1 expected: the tests fail)")
         else:
             print(f"caught {name!r}")
             continue
         bad += 1
-    if bad:
-        print(out.stdout[-4000:])
     print(f"{len(PLANTED) - bad} of {len(PLANTED)} planted bugs caught")
     return 1 if bad else 0
 

@@ -44,6 +44,8 @@ def _parser() -> argparse.ArgumentParser:
                                        "input or usage (nothing solved); 130 interrupted (the previous report kept).")
     p.add_argument("--quick", action="store_true", help="a fast subset: the cases with quick = true, some with fewer cells or speeds "
                    "(default: every case)")
+    p.add_argument("--full", action="store_true", help="also the cases with full = true: finer levels, more memory "
+                   "and time (default: without them)")
     p.add_argument("--out", type=Path, default=Path("verification-report"), metavar="DIR",
                    help="report folder; replaced only when it is an earlier report (or empty) "
                         "(default: verification-report)")
@@ -171,6 +173,8 @@ def main(argv: list[str] | None = None) -> int:
     except KeyboardInterrupt:
         print("verify: interrupted while reading the cases; nothing was solved", file=sys.stderr)
         return EXIT_INTERRUPTED
+    if not args.full and not args.case:
+        cases = [c for c in cases if not c.get("full", False)]
     if args.quick and not args.case:
         cases = [c for c in cases if c.get("quick", False)]
         if not cases:

@@ -75,6 +75,7 @@ HEADER = {
     "title": Field("string", True, doc="one line saying what is checked"),
     "kind": Field("string", True, doc="what the case runs"),
     "quick": Field("bool", doc="part of `verify --quick`"),
+    "full": Field("bool", doc="run only by `verify --full` or when named with --case (its finer levels cost more)"),
     "why": Field("string", doc="why this case and these tolerances"),
     "problem": Field("table", True, doc="the physical problem, in the schema of `bem solve`"),
     "gates": Field("tables", True, doc="at least one [[gates]] table: a case without gates checks nothing"),

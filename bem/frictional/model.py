@@ -16,8 +16,8 @@ relative motion and is resisted by the opposite force).
 Sphere equilibrium, small-slope contact on a body of revolution about the ``y`` axis
 (the paper's sec. 2: normal stresses radial, tangential ones circumferential): a normal
 force passes through the centre (no moment) and has the horizontal component
-``N arm`` (``arm = x / R``, the one of the frictionless solver); a tangential force acts
-at the distance ``l(y)`` from the axis. With ``Q`` (N) applied at the height ``h_Q`` above
+``N arm`` (``arm = dg/dx``, ``x / R`` to small slope as in the frictionless solver); a
+tangential force acts at the rolling radius ``l`` (:func:`bem.kinematics.rolling_geometry`). With ``Q`` (N) applied at the height ``h_Q`` above
 the centre (``R``: pushed at the top; 0: at the axle) and ``T_a`` (N m) at the axle:
 
     sum N = P,     Q = sum N arm + sum S_x,     T = T_a + h_Q Q = -sum l S_x
@@ -29,9 +29,11 @@ and ``R_r = Q + T Omega / V`` (eqs. 1, 63; eq. 63's ``sum F_U`` is the horizonta
 ``S = 0``, ``T = 0`` and ``R_r = sum N arm``: the frictionless solution.
 
 Energy: the rigid-body power ``R_r V`` equals the layer's power ``-V sum F . du/dx``
-plus the friction power ``sum S . w`` plus ``V sum N (arm - dh/dx)``, which vanishes when
-the rolling arm is the profile slope (paraboloid) and is ``O(r^2/R^2)`` of ``R_r`` for the
-exact sphere (the small-slope theory's own inconsistency; see :mod:`bem.energy`).
+plus the friction power ``sum S . w`` plus ``V sum N (arm - dg/dx)`` (whatever ``l``, as
+long as the slip velocity and the torque share it). The last term vanishes when the arm
+is the profile slope: kinematics ``exact`` and ``small_slope``
+(:func:`bem.kinematics.rolling_geometry`); with ``paper`` (arm ``x / R`` on the exact
+sphere) it is ``O(r^2/R^2)`` of ``R_r`` (docs/derivations.md, "Rolling kinematics").
 
 Solver: the package :mod:`bem.frictional` (Kalker's active set on contact, stick and slip sets;
 entry point :func:`bem.solve_friction`).
@@ -46,6 +48,7 @@ import numpy as np
 
 from ..contact import SHARED_SCALARS, ContactError, ContactFigures, ContactNotConverged, grid_summary
 from ..grid import Grid
+from ..kinematics import DEFAULT_KINEMATICS, KINEMATICS
 
 __all__ = [
     "MODES", "Friction", "FrictionRecord", "FrictionalContact", "FrictionNotConverged",
@@ -83,6 +86,16 @@ class Friction:
     radius : float, optional
         Distance (m) from the axis of rotation to the lowest point, for indenters
         without a radius (height maps); defaults to the indenter's radius.
+    kinematics : str
+        One of :data:`bem.kinematics.KINEMATICS`, the rolling geometry
+        (:func:`bem.kinematics.rolling_geometry`): ``paper`` (the default: eq. 14 as printed
+        with the arm ``x / R`` on the exact sphere, the frictionless solver's geometry, to
+        reproduce the paper's figures; its equilibrium figure is about ``r^2 / 2R^2`` below
+        the energy one), ``exact`` (the indenter's own
+        surface for the gap, the arm of the normal forces and the rolling radius: the
+        equilibrium and energy figures of ``R_r`` agree to the discretisation error),
+        ``small_slope`` (all to first order in the slope: a sphere is solved as the
+        paraboloid, arm ``x / R``, rolling radius ``R``; also consistent).
     max_iter : int
         Active-set iterations allowed (> 0).
     direction_tol : float
@@ -104,6 +117,7 @@ class Friction:
     mode: str = "pushed_at_top"
     omega: float | None = None
     radius: float | None = None
+    kinematics: str = DEFAULT_KINEMATICS
     max_iter: int = 300
     direction_tol: float = 1e-7
     set_tol: float = 1e-2
@@ -121,6 +135,8 @@ class Friction:
             raise ValueError(f"omega must be finite (rad/s), got {self.omega!r}")
         if self.radius is not None and not (math.isfinite(self.radius) and self.radius > 0):
             raise ValueError(f"radius must be > 0 m, got {self.radius!r}")
+        if self.kinematics not in KINEMATICS:
+            raise ValueError(f"kinematics must be one of {', '.join(KINEMATICS)}, got {self.kinematics!r}")
         if not (isinstance(self.max_iter, int) and self.max_iter > 0):
             raise ValueError(f"max_iter must be an integer > 0, got {self.max_iter!r}")
         if not (self.direction_tol > 0):
@@ -189,17 +205,20 @@ class FrictionalContact(ContactFigures):
     rolling_resistance_energy : float
         The energy figure ``(P_visc + P_fric) / V`` (N): the layer's dissipation computed
         independently from its loss modulus (:func:`bem.energy.viscous_dissipation`) plus
-        the friction power ``sum S . w``; ``nan`` when not computed. For a paraboloid the
-        two figures agree to the discretisation error (0.3 % at ``a = 0.25`` mm in the
-        paper's section 11). For the exact sphere (eq. 13) they differ by
-        ``sum N x (1/zeta - 1/R)`` with ``zeta = sqrt(R^2 - r^2)``: the sphere's surface
-        slope ``x / zeta`` does work on the layer, the paper's frictionless arm ``x / R``
-        (sec. 9) enters the equilibrium; about ``r^2 / 2R^2`` of ``R_r`` (1.3 % in section
-        11: ``R_r`` = 3.035 N, energy 3.074 N, the paper's 3.07 N).
+        the friction power ``sum S . w``; ``nan`` when not computed. With kinematics
+        ``exact`` or ``small_slope`` the two figures agree to the discretisation error
+        (at most 0.23 % measured on the paper's section 11 from 0.5 to 0.0625 mm; exact at
+        0.25 mm: ``R_r`` 3.080 N, energy 3.073 N). With ``paper`` they differ by
+        ``sum N x (1/zeta - 1/R)``, ``zeta = sqrt(R^2 - r^2)``: the sphere's surface slope
+        ``x / zeta`` does work on the layer, the arm ``x / R`` (sec. 9) enters the
+        equilibrium; about ``r^2 / 2R^2`` of ``R_r`` (1.3 % at 0.25 mm: ``R_r`` = 3.035 N,
+        energy 3.074 N, the paper's 3.07 N).
     speed, mu : float
         ``V`` (m/s), ``mu`` (-).
     mode : str
     record : FrictionRecord
+    kinematics : str
+        The rolling geometry solved (:data:`bem.kinematics.KINEMATICS`).
     """
 
     grid: Grid
@@ -226,6 +245,7 @@ class FrictionalContact(ContactFigures):
     mode: str
     record: FrictionRecord
     rolling_resistance_energy: float = math.nan
+    kinematics: str = DEFAULT_KINEMATICS
 
     @property
     def slip(self) -> np.ndarray:
@@ -269,6 +289,7 @@ class FrictionalContact(ContactFigures):
             "stick_fraction": self.stick_fraction,
             "mu": self.mu,
             "mode": self.mode,
+            "kinematics": self.kinematics,
             "speed": self.speed,
             "grid": grid_summary(self.grid),
             "solver": {"iterations": r.iterations, "residual": r.residual, "history": [list(h) for h in r.history],

@@ -14,7 +14,7 @@ import numpy as np
 from ..contact import ContactError, NormalContact, coarse_grid, coarse_solution, solve_normal
 from ..energy import viscous_dissipation
 from .model import Friction, FrictionalContact, FrictionNotConverged, FrictionRecord, LoadingUnreachable
-from ..kinematics import indenter_radius, rolling_radius
+from ..kinematics import indenter_radius, rolling_geometry
 from ..operator import one_worker
 from ..problem import Problem, compute_kernels
 from ..spectral import BLOCKS
@@ -58,8 +58,8 @@ def solve_friction(problem: Problem, friction: Friction, progress: Callable[[str
     ops = RollingOperators(p.grid, kernels)
     X, Y = p.grid.coordinates()
     R = indenter_radius(p.indenter, friction.radius)
-    res = solve_rolling(ops, p.indenter.profile(X, Y), p.indenter.rolling_arm(X, Y),
-                        rolling_radius(p.indenter, Y, friction.radius), R, p.loading.speed, friction,
+    profile, arm, ell = rolling_geometry(p.indenter, X, Y, friction.kinematics, friction.radius)
+    res = solve_rolling(ops, profile, arm, ell, R, p.loading.speed, friction,
                         load=p.loading.load, indentation=p.loading.indentation, progress=progress,
                         options=options)
     t2 = time.perf_counter()
@@ -86,9 +86,10 @@ def solve_rolling(ops: RollingOperators, profile, arm, ell, radius: float, speed
     profile : ndarray ``(K_y, K_x)``
         Indenter profile (m), ``inf`` where it cannot touch.
     arm : ndarray
-        Horizontal projection of a unit normal force (-), ``x / R``.
+        Horizontal projection of a unit (vertical) normal force (-), ``dg/dx`` for a
+        consistent energy balance (:func:`bem.kinematics.rolling_geometry`).
     ell : ndarray
-        Distance from the axis of rotation (m), ``l(y)``.
+        Rolling radius (m): the indenter's horizontal surface speed is ``Omega ell``.
     radius : float
         ``R`` (m), the height of the top point above the centre.
     speed : float
@@ -302,4 +303,5 @@ def _result(setup: RollingSetup, friction: Friction, N, Sx, Sy, d, om, stick, hi
     record = FrictionRecord(len(history), history, solver, lin_it, gap_resid, stick_res, coul)
     return FrictionalContact(
         g, N2, X2, Y2, delta, u, v, s.reshape(shape) - d + delta, wx, wy, st, float(d), float(N.sum()),
-        float(om), Q, T, rr, p_fric / V, rr - p_fric / V, V, mu, friction.mode, record)
+        float(om), Q, T, rr, p_fric / V, rr - p_fric / V, V, mu, friction.mode, record,
+        kinematics=friction.kinematics)

@@ -10,8 +10,9 @@ rigid sphere on the half layer y >= 0 (``fem.model = "3d"``). One sequence of st
    MKL Pardiso (pypardiso installed) serving its partial solve for W: the right-hand
    sides and the wanted entries are the same few u_z unknowns of the zone, so each solve
    touches only their paths in the elimination tree (8 times faster measured); the same
-   factors then solve for the fields (whole solution, iteratively refined). Without
-   pypardiso, SuperLU, up to ``SUPERLU_LIMIT`` unknowns.
+   factors then solve for the fields (whole solution, iteratively refined); they live
+   outside Python and are released when the solve ends. Without pypardiso, SuperLU, up
+   to ``SUPERLU_LIMIT`` unknowns.
 3. The surface compliance W = C S^-1 C^T of the candidate zone (non-symmetric while
    rolling), one solve per candidate node, right-hand sides in blocks.
 4. :func:`~fem_reference.contact.solve_contact` finds pressures and indentation (the
@@ -130,6 +131,38 @@ def _defect_correction(system: RollingSystem, solver, W, sol, x, contact, times)
     return sol, x
 
 
+def _contact_and_fields(system: RollingSystem, solver, model: str, problem: ContactProblem,
+                        times: dict, say):
+    """(sol, x): steps 3 to 5 of the module docstring on the factorized ``solver``."""
+    partial = getattr(solver, "partial", False)
+    times["factorization"] = solver.setup_time
+    t1 = time.perf_counter()
+    W = compliance(system, solver, BLOCK[model], say)
+    times["compliance"] = time.perf_counter() - t1
+    if partial:
+        solver.full_solves()
+    copies = 2.0 if model == "3d" else 1.0  # the half layer carries half the load
+    load = problem.loading.load
+
+    def contact(W, q):
+        if not np.all(np.isfinite(W)) or np.any(np.diag(W) <= 0):
+            raise FemReferenceError("the surface compliance is not positive: the rolling layer "
+                                    "model is singular (check the boundary conditions and the speed)")
+        return solve_contact(W, system.m, q, load=None if load is None else load / copies,
+                             indentation=problem.loading.indentation,
+                             max_iterations=problem.fem.max_iterations, progress=say)
+
+    t2 = time.perf_counter()
+    sol = contact(W, system.q)
+    times["contact"] = time.perf_counter() - t2
+    t3 = time.perf_counter()
+    x = solver.solve(-(system.C.T @ sol.pressure))
+    if partial:
+        sol, x = _defect_correction(system, solver, W, sol, x, contact, times)
+    times["fields"] = time.perf_counter() - t3
+    return sol, x
+
+
 def _surface_line(system: RollingSystem, u: np.ndarray):
     """x (m, increasing) and u_z (m) of the top-surface vertices on y = 0 (all of them
     in plane strain)."""
@@ -183,32 +216,12 @@ def solve_rolling(problem: ContactProblem,
     say(f"{system.mesh.t.shape[1]} elements, {system.n_unknowns} unknowns, "
         f"{len(system.m)} contact candidate nodes")
     solver = _factorize(system, model, say)
-    times["factorization"] = solver.setup_time
-    partial = getattr(solver, "partial", False)
-    t1 = time.perf_counter()
-    W = compliance(system, solver, BLOCK[model], say)
-    times["compliance"] = time.perf_counter() - t1
-    if partial:
-        solver.full_solves()
+    try:
+        sol, x = _contact_and_fields(system, solver, model, problem, times, say)
+    finally:
+        if hasattr(solver, "free"):  # Pardiso's factors live outside Python: release them
+            solver.free()
     copies = 2.0 if three_d else 1.0  # the half layer carries half the load
-    load = problem.loading.load
-
-    def contact(W, q):
-        if not np.all(np.isfinite(W)) or np.any(np.diag(W) <= 0):
-            raise FemReferenceError("the surface compliance is not positive: the rolling layer "
-                                    "model is singular (check the boundary conditions and the speed)")
-        return solve_contact(W, system.m, q, load=None if load is None else load / copies,
-                             indentation=problem.loading.indentation,
-                             max_iterations=problem.fem.max_iterations, progress=say)
-
-    t2 = time.perf_counter()
-    sol = contact(W, system.q)
-    times["contact"] = time.perf_counter() - t2
-    t3 = time.perf_counter()
-    x = solver.solve(-(system.C.T @ sol.pressure))
-    if partial:
-        sol, x = _defect_correction(system, solver, W, sol, x, contact, times)
-    times["fields"] = time.perf_counter() - t3
     h, zone = disc.element_size, disc.contact_zone
     nodes = system.nodes
     x_nodes = nodes[:, 0] if three_d else nodes

@@ -15,11 +15,12 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Callable
 
-from . import paper_sweeps, roller_3d, rolling_2d, rolling_3d, rolling_limits, stationary, sweep, table1
+from . import friction_carter, paper_sweeps, roller_3d, rolling_2d, rolling_3d, rolling_limits, stationary, sweep, table1
 
 __all__ = ["KINDS", "Context"]
 
 KINDS = {
+    "friction-carter": friction_carter,
     "stationary": stationary,
     "sweep": sweep,
     "table1": table1,

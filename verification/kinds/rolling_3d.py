@@ -10,7 +10,8 @@ scalars any of ``rolling_resistance`` (N, the paper's ``sum F x / R``), ``indent
 
 How errors are measured (as in the plane-strain kind, :mod:`.rolling_2d`):
 
-- ``rolling_resistance``, ``indentation``, ``peak_pressure``: relative;
+- ``rolling_resistance``, ``rolling_resistance_energy`` (D / V, N), ``indentation``,
+  ``peak_pressure``: relative;
 - ``leading_edge``, ``trailing_edge``, ``pressure_centroid_x``: the distance over the
   reference's contact length on ``y = 0``;
 - ``pressure_rms_interior``: RMS of ``p - p_ref`` on ``y = 0`` over the inner 90% of the
@@ -39,7 +40,7 @@ from .gates import check_gate, check_methods, used_methods
 
 ADDS_METHODS = True
 SECTIONS = ("bem", "fem", "methods")
-QUANTITIES = ("rolling_resistance", "indentation", "leading_edge", "trailing_edge", "peak_pressure",
+QUANTITIES = ("rolling_resistance", "rolling_resistance_energy", "indentation", "leading_edge", "trailing_edge", "peak_pressure",
               "pressure_centroid_x", "pressure_rms_interior")
 
 

@@ -46,7 +46,8 @@ def _solve(problem_cfg: dict, settings: dict, spacing: float, energy: bool = Tru
 def _energy_balance(res) -> dict:
     """The rolling figures under the harness's names: ``dissipation`` (W, or W/m) and
     ``rolling_resistance_slope``, the pressure's work rate over V (N, or N/m)."""
-    return {"dissipation": res.dissipation, "rolling_resistance_slope": res.pressure_power / res.speed}
+    return {"dissipation": res.dissipation, "rolling_resistance_slope": res.pressure_power / res.speed,
+            "rolling_resistance_energy": res.dissipation / res.speed}
 
 
 def run(problem_cfg: dict, settings: dict, spacing: float) -> Run:

@@ -79,6 +79,7 @@ def _moving(problem_cfg: dict, fem: dict):
     scalars["pressure_centroid_x"] = float(res.pressure_centroid)
     if res.speed > 0:  # the pressure's work rate over V, int p ds/dx
         scalars["rolling_resistance_slope"] = float(res.pressure_power) / res.speed
+        scalars["rolling_resistance_energy"] = float(res.dissipation) / res.speed  # D / V
     return res, seconds, scalars
 
 

@@ -1,0 +1,108 @@
+"""The grid error of the frictional figures, by Richardson extrapolation.
+
+The frictional solve converges slowly with the node spacing ``a``: the stick/slip border
+and the upwind derivative of the kinematics are first-order in ``a`` at best, and the
+slipping-friction part ``R_r^F`` (eq. 2), a small difference of slip velocities over a
+thin slip band, converges at an observed order between 0.5 and 1 on the paper's section
+11 example (docs/derivations.md, "Grid error of the frictional figures"). Its value
+on one grid is then no better than its grid error, which this module estimates: solve the
+case on its grid and on the grid coarsened by 2 and by 4 (same region, periods and
+truncations), and extrapolate each scalar from the three levels
+(:func:`bem.convergence.richardson`: the observed order ``p``, the limit
+``q* = q3 + (q3 - q2) / (2^p - 1)`` and ``|q* - q3|`` as the error of the given grid;
+where ``p`` is outside ``[0.5, 5]`` the error is three times the last change).
+
+Cost: the two coarse levels (a quarter and a sixteenth of the nodes) add their kernels
+and solves, about as much again as the fine solve on the section 11 example (measured,
+on a loaded machine: 0.25 mm alone 6.5-10 s, with the 0.5 and 1 mm levels about twice
+that), so it is asked for, not always done.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+from typing import Callable
+
+from ..convergence import Convergence, richardson
+from ..grid import Grid
+
+__all__ = ["SCALARS", "GridErrorEstimate", "coarsened_grid", "estimate_grid_error"]
+
+#: the frictional scalars estimated, with their units
+SCALARS = {
+    "rolling_resistance": "N",
+    "rolling_resistance_energy": "N",
+    "rolling_resistance_friction": "N",
+    "rolling_resistance_viscous": "N",
+    "driving_force": "N",
+    "omega": "rad/s",
+    "indentation": "m",
+    "stick_fraction": "-",
+}
+
+
+@dataclass(frozen=True)
+class GridErrorEstimate:
+    """Richardson estimates of the frictional scalars.
+
+    Attributes
+    ----------
+    spacings : tuple of float
+        Node spacings ``a_x`` (m) of the three levels, coarse to fine (the last is the
+        case's own grid).
+    figures : dict
+        Scalar name (:data:`SCALARS`) to :class:`bem.convergence.Convergence`:
+        values coarse to fine, observed order, extrapolated limit, error of the finest.
+    """
+
+    spacings: tuple
+    figures: dict
+
+    def lines(self) -> list[str]:
+        """One human-readable line per scalar, with its unit."""
+        out = [f"grid error (Richardson from a = {', '.join(f'{a * 1e3:g}' for a in self.spacings)} mm):"]
+        for name, c in self.figures.items():
+            unit = SCALARS[name]
+            order = f"order {c.order:.2f}" if c.asymptotic else "not asymptotic: 3 x last change"
+            out.append(f"  {name:28s} {c.values[-1]:.6g} {unit}, limit {c.extrapolated:.6g} {unit} "
+                       f"+/- {c.error_finest:.2g} {unit} ({order})")
+        return out
+
+    def summary(self) -> dict:
+        """JSON-ready: per scalar its three values, order, limit and error (SI units)."""
+        return {"spacings": list(self.spacings),
+                "figures": {n: {"values": list(c.values), "order": c.order, "limit": c.extrapolated,
+                                "error": c.error_finest, "asymptotic": c.asymptotic}
+                            for n, c in self.figures.items()}}
+
+
+def coarsened_grid(grid: Grid, factor: int) -> Grid:
+    """``grid`` with its spacings times ``factor`` (an integer >= 1) over the same region
+    (the half widths of the fine grid), periods and truncations."""
+    if not (isinstance(factor, int) and factor >= 1):
+        raise ValueError(f"factor must be an integer >= 1, got {factor!r}")
+    hw = ((grid.nodes_x - 1) / 2 * grid.spacing_x, (grid.nodes_y - 1) / 2 * grid.spacing_y)
+    return Grid.centred((grid.spacing_x * factor, grid.spacing_y * factor), (grid.period_x, grid.period_y),
+                        (grid.truncation_x, grid.truncation_y), hw)
+
+
+def estimate_grid_error(problem, friction, fine=None, progress: Callable[[str], None] | None = None,
+                        options=None) -> GridErrorEstimate:
+    """Solve ``problem`` with ``friction`` (:func:`bem.frictional.solve_friction`) on its
+    grid coarsened by 4 and by 2, and extrapolate every scalar of :data:`SCALARS` with the
+    result ``fine`` on its own grid (solved here when not given).
+
+    Raises what :func:`bem.frictional.solve_friction` raises, on any level.
+    """
+
+    from .solve import solve_friction
+
+    results = []
+    for factor in (4, 2):
+        p = replace(problem, grid=coarsened_grid(problem.grid, factor))
+        if progress:
+            progress(f"grid error: solving at a = {p.grid.spacing_x * 1e3:g} mm ({p.grid.nodes_x} x {p.grid.nodes_y})")
+        results.append(solve_friction(p, friction, options=options)[0])
+    results.append(fine if fine is not None else solve_friction(problem, friction, options=options)[0])
+    figures = {name: richardson([getattr(r, name) for r in results]) for name in SCALARS}
+    return GridErrorEstimate(tuple(r.grid.spacing_x for r in results), figures)

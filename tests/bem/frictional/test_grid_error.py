@@ -1,0 +1,68 @@
+"""Richardson estimates of the frictional figures (:mod:`bem.frictional.grid_error`)."""
+
+import math
+
+import pytest
+
+from bem import Grid, Layer, Loading, Problem, Sphere, ThreeParameterSolid
+from bem.frictional import Friction, solve_friction
+from bem.frictional.grid_error import SCALARS, coarsened_grid, estimate_grid_error
+
+
+def test_coarsened_grid_keeps_region_periods_and_truncations():
+    g = Grid.centred((0.25e-3, 0.25e-3), (0.2, 0.2), (500, 500), (5e-3, 5e-3))
+    for factor, nodes in ((1, 41), (2, 21), (4, 11)):
+        c = coarsened_grid(g, factor)
+        assert (c.nodes_x, c.nodes_y) == (nodes, nodes)
+        assert c.spacing_x == g.spacing_x * factor and c.x[-1] == pytest.approx(g.x[-1], rel=1e-12)
+        assert (c.period_x, c.truncation_y) == (g.period_x, g.truncation_y)
+    with pytest.raises(ValueError, match="factor must be an integer >= 1, got 0"):
+        coarsened_grid(g, 0)
+
+
+def test_estimate_on_the_section11_example_at_a_coarse_truncation():
+    """Levels 1, 0.5, 0.25 mm (Nt = 500): the given fine result is the last level, and
+    every scalar gets a limit and an error; the indentation converges at second order."""
+    layer = Layer(5e-3, ThreeParameterSolid(G0=3.0e6, tau=0.25, f=1.0), 1000.0)
+    grid = Grid.centred((0.25e-3, 0.25e-3), (0.2, 0.2), (500, 500), (5e-3, 5e-3))
+    problem, friction = Problem(layer, Sphere(0.02), grid, Loading(0.05, load=150.0)), Friction(0.2)
+    fine, _ = solve_friction(problem, friction, energy=True)
+    est = estimate_grid_error(problem, friction, fine=fine)
+    assert est.spacings == pytest.approx((1e-3, 0.5e-3, 0.25e-3))
+    assert set(est.figures) == set(SCALARS)
+    rf = est.figures["rolling_resistance_friction"]
+    assert rf.values[-1] == fine.rolling_resistance_friction and rf.error_finest > 0
+    d = est.figures["indentation"]
+    assert d.asymptotic and 1.5 < d.order < 4 and d.error_finest < 1e-3 * fine.indentation
+    assert all(math.isfinite(c.extrapolated) for c in est.figures.values())
+    text = "\n".join(est.lines())
+    assert "rolling_resistance_friction" in text and " N, limit " in text
+    assert est.summary()["figures"]["omega"]["values"][-1] == fine.omega
+
+
+def test_cli_error_estimate_reports_every_figure_with_the_fine_result_as_its_last_value(capsys):
+    import json
+    from pathlib import Path
+
+    from bem.cli import main
+
+    case = str(Path(__file__).resolve().parents[3] / "examples" / "paper-section11-friction.toml")
+    code = main(["solve", case, "--json", "--quiet", "--error-estimate", "--set", "grid.spacing=5e-4",
+                 "--set", "grid.truncation=400", "--set", "grid.half_width=8e-3"])
+    out = json.loads(capsys.readouterr().out)
+    assert code == 0
+    estimate = out["grid_error"]
+    assert estimate["spacings"] == pytest.approx([2e-3, 1e-3, 5e-4])
+    for name in ("rolling_resistance", "rolling_resistance_friction", "indentation"):
+        assert estimate["figures"][name]["values"][-1] == out[name]  # the fine level is the solve itself
+        assert estimate["figures"][name]["error"] >= 0
+
+
+def test_cli_error_estimate_without_friction_is_a_usage_error(capsys):
+    from pathlib import Path
+
+    from bem.cli import main
+
+    case = str(Path(__file__).resolve().parents[3] / "examples" / "paper-section11-frictionless.toml")
+    assert main(["solve", case, "--quiet", "--error-estimate"]) == 2
+    assert "needs a [friction] section" in capsys.readouterr().err

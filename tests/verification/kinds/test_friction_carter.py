@@ -1,0 +1,40 @@
+"""The ``friction-carter`` kind: the case runs and passes its gates, and bad cases are
+refused before anything is solved."""
+
+import copy
+from pathlib import Path
+
+import pytest
+
+from verification.kinds import KINDS
+from verification.runner import load_case, run_case
+from verification.schema import CaseError
+
+CASE = Path(__file__).resolve().parents[3] / "verification" / "cases" / "friction-carter-2d.toml"
+
+
+def test_case_passes_its_gates_over_the_creepages():
+    result = run_case(load_case(CASE), progress=lambda m: None)
+    assert "error" not in result.extra
+    assert {g.quantity for g in result.gates} == {"creep_force", "stick_edge", "traction_rms"}
+    assert all(g.passed for g in result.gates), [(g.quantity, g.error) for g in result.gates]
+    rows = result.extra["carter"]
+    assert rows[0]["frac"] == 1e-3 and rows[-1]["frac"] == 1.5
+    assert rows[-1]["Q"] == pytest.approx(0.3 * rows[-1]["load"], rel=1e-9)  # full slip: mu P'
+
+
+def test_bad_cases_are_refused():
+    case = load_case(CASE)
+    kind = KINDS["friction-carter"]
+    bad = copy.deepcopy(case)
+    bad["gates"][0]["quantity"] = "creep_forse"
+    with pytest.raises(CaseError, match="unknown quantity 'creep_forse'"):
+        kind.check(bad, "case.toml", {})
+    bad = copy.deepcopy(case)
+    bad["carter"]["creepages"] = [0.1, -0.2]
+    with pytest.raises(CaseError, match=r"creepages: each must be > 0 .* got -0.2"):
+        kind.check(bad, "case.toml", {})
+    bad = copy.deepcopy(case)
+    bad["problem"]["material"] = {"model": "three_parameter", "G0": 3e6, "tau": 0.25, "f": 1.0}
+    with pytest.raises(CaseError, match="material model = \"elastic\""):
+        kind.check(bad, "case.toml", {})
