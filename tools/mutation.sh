@@ -47,9 +47,10 @@ default_tests() {
         bem/energy.py) echo "tests/bem/test_energy*.py tests/bem/test_layer_properties.py" ;;
         bem/spectral.py) echo "tests/bem/test_spectral*.py tests/bem/test_speed_limits.py" ;;
         bem/layer.py) echo "tests/bem/test_layer*.py" ;;
+        bem/convergence.py) echo "tests/verification/test_metrics.py tests/bem/frictional/test_grid_error.py" ;;
         bem/*.py) echo "tests/bem/test_${name}*.py" ;;
         fem_reference/*) echo "tests/fem_reference/" ;;
-        verification/metrics.py|bem/convergence.py) echo "tests/verification/test_metrics.py tests/verification/kinds/test_stationary.py" ;;
+        verification/metrics.py) echo "tests/verification/test_metrics.py tests/verification/kinds/test_stationary.py" ;;
         verification/*) echo "tests/verification/" ;;
         sweeps/*) echo "tests/sweeps/" ;;
         casefile/*) echo "tests/casefile/" ;;
