@@ -4,6 +4,7 @@
 
 from __future__ import annotations
 
+import pathlib
 import zipfile
 from pathlib import Path
 
@@ -14,11 +15,11 @@ import casefile
 from .grid import Grid
 from .indenters import Cylinder, HeightMap, LineCylinder, Paraboloid, Sphere
 from .layer import Layer
-from .materials import material_from_config
+from .materials import Elastic, Material, MasterCurveTable, Prony, ThreeParameterSolid
 from .plane import LineGrid
 from .problem import Loading, Problem, auto_half_width
 
-__all__ = ["read_case", "problem_from_config", "friction_from_config"]
+__all__ = ["read_case", "problem_from_config", "friction_from_config", "material_from_config"]
 
 
 def read_case(path: str | Path, overrides: list[str] = ()) -> dict:
@@ -169,3 +170,73 @@ def friction_from_config(config: dict):
             f"[friction] radius = {sec['radius']!r} m differs from [indenter] radius = {own!r} m: the friction "
             "radius is for an indenter without one (shape = \"heightmap\"); remove it, the indenter's is used")
     return None if sec is None else Friction(**sec)
+
+
+_MODELS = {
+    "elastic": (Elastic, ("shear_modulus",)),
+    "three_parameter": (ThreeParameterSolid, ("G0", "tau", "f")),
+    "prony": (Prony, ("G_inf", "G", "tau")),
+    "table": (MasterCurveTable.from_csv, ("file",)),
+}
+
+
+def _dma(section: dict, base_dir) -> Material:
+    """A ``model = "dma"`` table checked against the case schema, then built at its
+    service temperature."""
+    from casefile import CaseFileError, check_table
+    from casefile.schema import section as schema_section
+
+    from .dma.case import dma_material
+
+    spec = schema_section("material")
+    keys = spec.keys + spec.variants["dma"].keys
+    checked = check_table("[material]", section, keys, folder=base_dir, context=' for model = "dma"',
+                          error=CaseFileError)
+    return dma_material(checked, base_dir).material
+
+
+def material_from_config(section: dict, base_dir: pathlib.Path) -> Material:
+    """Build a material from the ``[material]`` table of a TOML case file.
+
+    Parameters
+    ----------
+    section : dict
+        ``{"model": "elastic", "shear_modulus": ...}``, ``{"model": "three_parameter",
+        "G0", "tau", "f"}``, ``{"model": "prony", "G_inf", "G", "tau"}`` or
+        ``{"model": "table", "file": ...}`` or ``{"model": "dma", "file": ...,
+        "reference_temperature": ..., "temperature": ...}`` (SI units, temperatures in K;
+        keys in ``docs/case-files.md``). A ``"dma"`` table gives the material at its
+        service temperature (:func:`bem.dma.case.dma_material`; the frequency band check
+        needs the grid and the speed, so :func:`bem.case.problem_from_config` makes it).
+    base_dir : pathlib.Path
+        Directory that a table's ``file`` is relative to (the case file's directory).
+
+    Raises
+    ------
+    ValueError
+        Unknown model, unknown or missing key (naming it and the allowed ones), or
+        invalid values; for ``"dma"`` a :class:`bem.dma.DMAError` naming the key or the
+        file's line.
+    """
+    allowed = ", ".join((*_MODELS, "dma"))
+    if "model" not in section:
+        raise ValueError(f"material.model is missing (allowed: {allowed})")
+    model = section["model"]
+    if model == "dma":
+        return _dma(section, base_dir)
+    if model not in _MODELS:
+        raise ValueError(f"material.model must be one of {allowed}, got {model!r}")
+    build, keys = _MODELS[model]
+    for key in section:
+        if key != "model" and key not in keys:
+            raise ValueError(
+                f"unknown key material.{key} for model {model!r} (allowed keys: model, {', '.join(keys)})"
+            )
+    for key in keys:
+        if key not in section:
+            raise ValueError(f"material.{key} is missing for model {model!r} (required keys: {', '.join(keys)})")
+    if model == "table":
+        if not isinstance(section["file"], str):
+            raise ValueError(f"material.file must be a path string, got {section['file']!r}")
+        return build(pathlib.Path(base_dir) / section["file"])
+    return build(**{key: section[key] for key in keys})

@@ -5,7 +5,7 @@ Time dependence ``exp(+i omega t)`` (paper eqs. 23-26: mode ``m`` is felt at
 relaxation function gives ``G*(-omega) = conj G*(omega)``. Every ``modulus`` accepts any
 real ``omega`` (rad/s), negative and zero included, vectorized; ``G*(0)`` is real.
 
-Materials are frozen dataclasses; :func:`material_from_config` builds one from the
+Materials are frozen dataclasses; :func:`bem.case.material_from_config` builds one from the
 ``[material]`` table of a case file.
 """
 
@@ -27,7 +27,6 @@ __all__ = [
     "Prony",
     "MasterCurveTable",
     "Material",
-    "material_from_config",
 ]
 
 
@@ -338,71 +337,3 @@ class MasterCurveTable:
 
 Material = Union[Elastic, ThreeParameterSolid, Prony, MasterCurveTable]
 
-_MODELS = {
-    "elastic": (Elastic, ("shear_modulus",)),
-    "three_parameter": (ThreeParameterSolid, ("G0", "tau", "f")),
-    "prony": (Prony, ("G_inf", "G", "tau")),
-    "table": (MasterCurveTable.from_csv, ("file",)),
-}
-
-
-def _dma(section: dict, base_dir) -> Material:
-    """A ``model = "dma"`` table checked against the case schema, then built at its
-    service temperature (``bem.dma`` imports this module, hence the late imports)."""
-    from casefile import CaseFileError, check_table
-    from casefile.schema import section as schema_section
-
-    from .dma.case import dma_material
-
-    spec = schema_section("material")
-    keys = spec.keys + spec.variants["dma"].keys
-    checked = check_table("[material]", section, keys, folder=base_dir, context=' for model = "dma"',
-                          error=CaseFileError)
-    return dma_material(checked, base_dir).material
-
-
-def material_from_config(section: dict, base_dir: pathlib.Path) -> Material:
-    """Build a material from the ``[material]`` table of a TOML case file.
-
-    Parameters
-    ----------
-    section : dict
-        ``{"model": "elastic", "shear_modulus": ...}``, ``{"model": "three_parameter",
-        "G0", "tau", "f"}``, ``{"model": "prony", "G_inf", "G", "tau"}`` or
-        ``{"model": "table", "file": ...}`` or ``{"model": "dma", "file": ...,
-        "reference_temperature": ..., "temperature": ...}`` (SI units, temperatures in K;
-        keys in ``docs/case-files.md``). A ``"dma"`` table gives the material at its
-        service temperature (:func:`bem.dma.case.dma_material`; the frequency band check
-        needs the grid and the speed, so :func:`bem.case.problem_from_config` makes it).
-    base_dir : pathlib.Path
-        Directory that a table's ``file`` is relative to (the case file's directory).
-
-    Raises
-    ------
-    ValueError
-        Unknown model, unknown or missing key (naming it and the allowed ones), or
-        invalid values; for ``"dma"`` a :class:`bem.dma.DMAError` naming the key or the
-        file's line.
-    """
-    allowed = ", ".join((*_MODELS, "dma"))
-    if "model" not in section:
-        raise ValueError(f"material.model is missing (allowed: {allowed})")
-    model = section["model"]
-    if model == "dma":
-        return _dma(section, base_dir)
-    if model not in _MODELS:
-        raise ValueError(f"material.model must be one of {allowed}, got {model!r}")
-    build, keys = _MODELS[model]
-    for key in section:
-        if key != "model" and key not in keys:
-            raise ValueError(
-                f"unknown key material.{key} for model {model!r} (allowed keys: model, {', '.join(keys)})"
-            )
-    for key in keys:
-        if key not in section:
-            raise ValueError(f"material.{key} is missing for model {model!r} (required keys: {', '.join(keys)})")
-    if model == "table":
-        if not isinstance(section["file"], str):
-            raise ValueError(f"material.file must be a path string, got {section['file']!r}")
-        return build(pathlib.Path(base_dir) / section["file"])
-    return build(**{key: section[key] for key in keys})

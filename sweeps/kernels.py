@@ -27,6 +27,7 @@ from bem.problem import Problem, compute_kernels
 from bem.spectral import BLOCKS
 
 from .integrity import array_digest, code_version, open_envelope, point_envelope
+from .table import check_values
 
 __all__ = ["kernel_key", "KernelGroup", "group_points", "fit_kernels", "form_kernels", "KernelCache", "PointCache"]
 
@@ -219,7 +220,8 @@ class PointCache:
         except (OSError, ValueError) as exc:
             return None, f"{path} cannot be read ({type(exc).__name__}: {exc})"
         row, why = open_envelope(data, point_id)
-        return row, (f"{path} {why}" if why else "")
+        why = why or check_values(row)  # its values as a table row must hold them
+        return (None if why else row), (f"{path} {why}" if why else "")
 
     def save(self, point_id: str, row: dict) -> None:
         """Store a finished point (through a temporary file and a rename).

@@ -8,12 +8,12 @@ import re
 import numpy as np
 import pytest
 
+from bem.case import material_from_config
 from bem.materials import (
     Elastic,
     MasterCurveTable,
     Prony,
     ThreeParameterSolid,
-    material_from_config,
 )
 
 OMEGA = np.concatenate([[0.0], np.logspace(-6, 6, 241)])

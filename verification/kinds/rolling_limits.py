@@ -64,7 +64,7 @@ def _with(cfg: dict, speed: float) -> dict:
 
 
 def run(case: dict, ctx) -> CaseResult:
-    from bem.materials import material_from_config  # the limiting moduli
+    from bem.case import material_from_config  # the limiting moduli
 
     t0 = time.perf_counter()
     result = CaseResult(case["name"], case["title"], case.get("why", ""), case["kind"])

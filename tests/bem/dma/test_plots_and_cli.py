@@ -14,7 +14,8 @@ from matplotlib.figure import Figure
 from bem.dma import WLF, build_master_curve, fit_prony
 from bem.dma.__main__ import main
 from bem.dma.plots import plot_isotherms, plot_master_curve, plot_shift_factors
-from bem.materials import MasterCurveTable, Prony, material_from_config
+from bem.case import material_from_config
+from bem.materials import MasterCurveTable, Prony
 
 REPO = Path(__file__).resolve().parents[3]
 EXAMPLE = REPO / "examples" / "data" / "dma-pyvisco-freq-raw.csv"
