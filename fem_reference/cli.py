@@ -11,14 +11,19 @@ m, ``indentation`` m, ``load`` N, ``peak_pressure`` Pa, ``mesh`` and
 ``lateral_edge`` m and ``peak_memory`` bytes), before any file is written: ``--plot`` a
 figure (:func:`~.output.plot_result`), ``--vtu`` the fields (:func:`~.output.write_vtu`).
 Output paths are checked before the solve. Exit status 0 on success, 2 for bad input, 1 when the solve fails or an
-output could not be written.
+output could not be written, 130 when interrupted (SIGINT or SIGTERM: nothing written).
 """
 
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
+import os
+import signal
 import sys
+import threading
+from pathlib import Path
 from typing import List, Optional
 
 import casefile
@@ -63,8 +68,39 @@ def _parser() -> argparse.ArgumentParser:
     return ap
 
 
+def _interrupt(signum, frame):
+    raise KeyboardInterrupt(signal.Signals(signum).name)
+
+
 def main(argv: Optional[List[str]] = None) -> int:
+    """Exit status: 0 done, 1 the solve failed or an output could not be written (the result
+    is printed first), 2 bad input or usage, 130 interrupted (SIGINT or SIGTERM: nothing
+    written, a half-written output removed)."""
     args = _parser().parse_args(argv)
+    previous = {}
+    if threading.current_thread() is threading.main_thread():  # handlers live in the main thread only
+        previous = {s: signal.signal(s, _interrupt) for s in (signal.SIGINT, signal.SIGTERM)}
+    outputs = [p for p in (args.plot, args.vtu) if p is not None]
+    existed = {p: Path(p).exists() for p in outputs}
+    try:
+        return _run(args)
+    except KeyboardInterrupt as exc:
+        for path in outputs:  # an output this run began writing, not one that was there before
+            if not existed[path]:
+                with contextlib.suppress(OSError):
+                    os.remove(path)
+        print(f"fem-reference: interrupted ({exc or 'SIGINT'}): nothing written", file=sys.stderr)
+        return 130
+    except BrokenPipeError:  # the reader of stdout went away: a quiet end
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 0
+    finally:
+        for s, handler in previous.items():
+            signal.signal(s, handler)
+
+
+def _run(args) -> int:
+    """The ``solve`` command on parsed ``args``; its exit status."""
     from .case import load_case
     from .output import plot_result, write_vtu
     from .rolling.result import RollingResult

@@ -58,6 +58,22 @@ def test_an_interrupted_solve_exits_130_and_writes_nothing(tmp_path, sig):
     assert out == "" and sorted(os.listdir(tmp_path)) == []
 
 
+@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM])
+def test_an_interrupted_fem_solve_exits_130_and_writes_nothing(tmp_path, sig):
+    vtu, plot = tmp_path / "f.vtu", tmp_path / "p.png"
+    proc = subprocess.Popen([sys.executable, "-m", "fem_reference.cli", "solve",
+                             str(ROOT / "examples" / "paper-section10-thick.toml"), "--set", "fem.refine=2",
+                             "--vtu", str(vtu),
+                             "--plot", str(plot)], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            env={**os.environ, "OPENBLAS_NUM_THREADS": "1"})
+    first = proc.stderr.readline()  # the solve has started: its first progress line
+    proc.send_signal(sig)
+    out, err = proc.communicate(timeout=120)
+    assert first and proc.returncode == 130, (first, err)
+    assert f"fem-reference: interrupted ({signal.Signals(sig).name}): nothing written" in err
+    assert out == "" and sorted(os.listdir(tmp_path)) == []
+
+
 def test_a_closed_stdout_ends_quietly(small):
     done = subprocess.run(f"{sys.executable} -m bem.cli solve {small} --json --quiet | head -c 10",
                           shell=True, capture_output=True, text=True, timeout=120)

@@ -12,6 +12,8 @@ from __future__ import annotations
 import contextlib
 import io
 import os
+import signal
+import threading
 import tempfile
 from typing import Callable, Protocol
 
@@ -70,8 +72,26 @@ def mesh_with_gmsh(build: Callable[[], None], volume_type: str, dim: int):
         If gmsh fails, makes no ``volume_type`` cell, or a named group is empty.
     """
     started = not gmsh.isInitialized()
+    main = threading.current_thread() is threading.main_thread()
+    handlers = {s: signal.getsignal(s) for s in (signal.SIGINT, signal.SIGTERM)} if main else {}
+
+    @contextlib.contextmanager
+    def keep_handlers():
+        """gmsh's library resets SIGINT and SIGTERM to their defaults when it starts and
+        stops: hold them back meanwhile, then put the caller's handlers back."""
+        blocked = signal.pthread_sigmask(signal.SIG_BLOCK, set(handlers)) if handlers else None
+        try:
+            yield
+        finally:
+            for s, handler in handlers.items():
+                if handler is not None:
+                    signal.signal(s, handler)
+            if blocked is not None:
+                signal.pthread_sigmask(signal.SIG_SETMASK, blocked)
+
     if started:
-        gmsh.initialize(readConfigFiles=False, interruptible=False)
+        with keep_handlers():
+            gmsh.initialize(readConfigFiles=False, interruptible=False)
     try:
         gmsh.option.setNumber("General.Terminal", 0)
         gmsh.option.setNumber("General.Verbosity", 1)
@@ -90,7 +110,8 @@ def mesh_with_gmsh(build: Callable[[], None], volume_type: str, dim: int):
         gmsh.model.remove()
     finally:
         if started:
-            gmsh.finalize()
+            with keep_handlers():
+                gmsh.finalize()
     if volume_type not in m.cells_dict or len(m.cells_dict[volume_type]) == 0:
         raise MeshError(f"gmsh made no {volume_type} cells")
     mesh = from_meshio(_drop_orphans(m, volume_type))
