@@ -42,11 +42,13 @@ entry point :func:`bem.solve_friction`).
 from __future__ import annotations
 
 import math
+import numbers
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from ..contact import SHARED_SCALARS, ContactError, ContactFigures, ContactNotConverged, grid_summary
+from .._checks import NotANumber, real
 from ..grid import Grid
 from ..kinematics import DEFAULT_KINEMATICS, KINEMATICS
 
@@ -124,7 +126,18 @@ class Friction:
     dense_limit: int = 600
 
     def __post_init__(self) -> None:
-        if not (isinstance(self.mu, (int, float)) and math.isfinite(self.mu) and self.mu >= 0):
+        # the number types first (booleans refused, numpy scalars taken as Python numbers),
+        # then each field's rule
+        for name, unit, rule in (("mu", "", ">=0"), ("omega", "rad/s", "any"), ("radius", "m", ">0"),
+                                 ("direction_tol", "", ">0"), ("set_tol", "", ">=0")):
+            if getattr(self, name) is not None:
+                object.__setattr__(self, name, real(name, getattr(self, name), unit, rule, finite=False))
+        for name, least in (("max_iter", 1), ("dense_limit", 0)):
+            value = getattr(self, name)
+            if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Integral):
+                raise NotANumber(f"{name} must be an integer {'> 0' if least else '>= 0'}, got {value!r}")
+            object.__setattr__(self, name, int(value))
+        if not (math.isfinite(self.mu) and self.mu >= 0):
             raise ValueError(f"mu must be >= 0, got {self.mu!r}")
         if self.mode not in MODES:
             raise ValueError(f"mode must be one of {', '.join(MODES)}, got {self.mode!r}")

@@ -57,7 +57,7 @@ def test_bad_friction_input_is_refused(kwargs, message):
     ({"mu": -0.1}, "mu must be >= 0, got -0.1"),
     ({"mu": math.nan}, "mu must be >= 0, got nan"),
     ({"mu": math.inf}, "mu must be >= 0, got inf"),
-    ({"mu": "0.2"}, "mu must be >= 0, got '0.2'"),
+    ({"mu": "0.2"}, "mu must be >= 0, got '0.2' (a str, not a real number)"),
     ({"mu": 0.2, "mode": "pulled"}, "mode must be one of pushed_at_top, towed, torque, omega, got 'pulled'"),
     ({"mu": 0.2, "mode": "omega"},
      "omega (rad/s) must be given with mode = 'omega' and only then, got mode = 'omega', omega = None"),
@@ -147,3 +147,23 @@ def test_frictional_contact_derived_fields_by_hand():
     rec = r.record
     assert type(rec)(1, (), "dense", 0, 0.3, 0.2, 0.1).residual == 0.3
     assert type(rec)(1, (), "dense", 0, 0.1, 0.3, 0.2).residual == 0.3
+
+
+@pytest.mark.parametrize("field, value", [("mu", True), ("mu", "0.2"), ("radius", np.bool_(True)),
+                                          ("direction_tol", "1e-7"), ("set_tol", False)])
+def test_friction_refuses_what_is_not_a_real_number_naming_the_field(field, value):
+    with pytest.raises(TypeError, match=f"^{field} must be .*not a real number"):
+        Friction(**{"mu": 0.2, field: value})
+
+
+@pytest.mark.parametrize("field", ["max_iter", "dense_limit"])
+def test_friction_refuses_a_boolean_count(field):
+    with pytest.raises(TypeError, match=f"^{field} must be an integer"):
+        Friction(0.2, **{field: True})
+
+
+def test_friction_takes_numpy_scalars_as_python_numbers():
+    f = Friction(np.float32(0.25), "omega", omega=np.float64(2.5), radius=np.float32(0.02),
+                 max_iter=np.int64(7), dense_limit=np.int32(0))
+    assert (f.mu, f.omega, f.max_iter, f.dense_limit) == (0.25, 2.5, 7, 0)
+    assert all(type(v) is float for v in (f.mu, f.omega, f.radius)) and type(f.max_iter) is int
