@@ -10,119 +10,12 @@ import re
 import numpy as np
 import pytest
 
-from bem import Grid, Layer, Loading, Problem, Sphere, ThreeParameterSolid, influence_kernels
+from bem import Sphere
 from bem.contact import ContactAtEdge, solve_normal
 from bem.frictional import Friction, FrictionNotConverged, LoadingUnreachable, SolverOptions, solve_friction
 from bem.kinematics import rolling_radius, upwind_table
 from bem.operator import ComplianceOperator
-from bem.spectral import BLOCKS
-
-
-LAYER = Layer(5e-3, ThreeParameterSolid(G0=3.0e6, tau=0.25, f=1.0), 1000.0)
-V = 0.05
-R = 0.02
-GRID = Grid.centred((0.5e-3, 0.5e-3), (0.1, 0.1), (100, 100), (5.5e-3, 5.5e-3))  # 23 x 23, 529 nodes
-
-
-@pytest.fixture(scope="module")
-def kernels():
-    return influence_kernels(GRID, LAYER, V, blocks=BLOCKS)
-
-
-def problem(indenter=Sphere(R), grid=GRID, **loading):
-    return Problem(LAYER, indenter, grid, Loading(V, **(loading or {"load": 20.0})))
-
-
-def _apply(grid, table, f):
-    return ComplianceOperator(grid, table).apply(f)
-
-
-def check_result(res, p, friction, kernels, coulomb=1e-6):
-    """Every field and figure of ``res`` from its forces and the definitions; returns the
-    recomputed slip velocity magnitude on the slip nodes (for further checks)."""
-    g, V_ = p.grid, p.loading.speed
-    X, Y = g.coordinates()
-    ax = g.spacing_x
-    N, Sx, Sy = res.force, res.force_x, res.force_y
-    scale = np.abs(N).max()
-    K = kernels
-    delta = _apply(g, K["ww"], N) - _apply(g, K["wu"], Sx) - _apply(g, K["wv"], Sy)
-    u = -_apply(g, K["uw"], N) + _apply(g, K["uu"], Sx) + _apply(g, K["uv"], Sy)
-    v = -_apply(g, K["vw"], N) + _apply(g, K["vu"], Sx) + _apply(g, K["vv"], Sy)
-
-    def d(b):
-        return upwind_table(K[b], ax)
-
-    dux = -_apply(g, d("uw"), N) + _apply(g, d("uu"), Sx) + _apply(g, d("uv"), Sy)
-    dvx = -_apply(g, d("vw"), N) + _apply(g, d("vu"), Sx) + _apply(g, d("vv"), Sy)
-    for got, want in ((res.deflection, delta), (res.displacement_x, u), (res.displacement_y, v)):
-        np.testing.assert_allclose(got, want, rtol=0, atol=1e-12 * np.abs(want).max())
-    s = p.indenter.profile(X, Y)
-    h = s - res.indentation + delta
-    reach = np.isfinite(s)
-    np.testing.assert_allclose(res.gap[reach], h[reach], rtol=0, atol=1e-12 * abs(res.indentation))
-    assert np.array_equal(np.isfinite(res.gap), reach)
-    contact = N > 0
-    np.testing.assert_array_equal(res.contact, contact)
-    assert contact.sum() > 20 and not (res.stick & ~contact).any()
-    assert (N >= 0).all() and not Sx[~contact].any() and not Sy[~contact].any()
-    d_ = res.indentation
-    gap_res = max(np.abs(h[contact]).max(), (-h[reach & ~contact]).max(initial=0.0)) / abs(d_)
-    assert res.record.gap_residual == pytest.approx(gap_res, rel=1e-6, abs=1e-13)
-    assert res.record.gap_residual < 1e-8
-    ell = rolling_radius(p.indenter, Y, friction.radius)
-    arm = p.indenter.rolling_arm(X, Y)
-    om = res.omega
-    wx = V_ * (1 + dux) - om * ell
-    wy = V_ * dvx
-    st, sl = res.stick, contact & ~res.stick
-    # slip velocity: w on slip nodes, exactly 0 on stick nodes and off the contact
-    np.testing.assert_allclose(res.slip_x[sl], wx[sl], rtol=0, atol=1e-12 * V_)
-    np.testing.assert_allclose(res.slip_y[sl], wy[sl], rtol=0, atol=1e-12 * V_)
-    assert not res.slip_x[~sl].any() and not res.slip_y[~sl].any()
-    stick_res = float(np.hypot(wx, wy)[st].max(initial=0.0) / V_)
-    assert res.record.stick_residual == pytest.approx(stick_res, abs=1e-13)
-    assert stick_res < 1e-9
-    mu = friction.mu
-    smag, wmag = np.hypot(Sx, Sy), np.hypot(wx, wy)
-    cone = np.maximum(smag[st] / (mu * N[st]) - 1, 0).max(initial=0.0)
-    mag = np.abs(smag[sl] / (mu * N[sl]) - 1).max(initial=0.0)
-    ang = (1 - (Sx * wx + Sy * wy)[sl] / (smag * wmag)[sl]).max(initial=0.0)
-    assert res.record.coulomb_residual == pytest.approx(max(cone, mag, ang), abs=1e-12)
-    assert res.record.coulomb_residual < coulomb
-    # Q, T, R_r and its parts, eqs. 1-3 and 63
-    Q = float((N * arm).sum() + Sx.sum())
-    T = float(-(ell * Sx).sum())
-    assert res.driving_torque == pytest.approx(T, rel=1e-12, abs=1e-15 * scale)
-    if friction.mode == "torque" and mu > 0:
-        assert res.driving_force == 0.0 and abs(Q) < 1e-10 * scale
-    else:
-        assert res.driving_force == pytest.approx(Q, rel=1e-12, abs=1e-15 * scale)
-    if friction.mode == "pushed_at_top":
-        assert T == pytest.approx(Q * (friction.radius or R), rel=1e-8)
-    if friction.mode == "towed":
-        assert abs(T) < 1e-12 * scale * R
-    if friction.mode == "omega":
-        assert om == friction.omega
-    rr = res.driving_force + (T * om / V_)
-    assert res.rolling_resistance == pytest.approx(rr, rel=1e-12, abs=1e-15 * scale)
-    p_fric = float((Sx * res.slip_x + Sy * res.slip_y).sum())
-    assert res.rolling_resistance_friction == pytest.approx(p_fric / V_, rel=1e-12, abs=1e-15 * scale)
-    assert res.rolling_resistance_viscous == pytest.approx(rr - p_fric / V_, rel=1e-12, abs=1e-15 * scale)
-    if p.loading.load is not None:
-        assert res.load == pytest.approx(p.loading.load, rel=1e-12)
-    else:
-        assert res.indentation == p.loading.indentation
-    assert res.load == pytest.approx(float(N.sum()), rel=1e-15)
-    assert (res.speed, res.mu, res.mode, res.grid) == (V_, mu, friction.mode, g)
-    for name in ("indentation", "load", "omega", "driving_force", "driving_torque", "rolling_resistance"):
-        assert type(getattr(res, name)) is float, name
-    r = res.record
-    assert r.iterations == len(r.history) > 0
-    last = r.history[-1]
-    assert last[:2] == (int(contact.sum()), int(st.sum())) and last[3] == om
-    assert last[2] <= max(friction.direction_tol, friction.set_tol if coulomb > 1e-6 else 0)
-    return wmag[sl]
+from tests.bem.frictional.solve_checks import GRID, LAYER, R, V, _apply, check_result, problem
 
 
 CYCLE = (r"the stick/slip sets cycle after (\d+) iterations even with one-node updates \(cone excess (\S+), "
