@@ -316,18 +316,27 @@ def _kernels_halfspace_split(grid: Grid, layer: Layer, speed: float, blocks: tup
         half["vv"] = 3 * half["ww"] - half["uu"]
     if "vu" in blocks:
         half["vu"] = half["uv"]
-    # the modes that see the base: exact less half-space symbols, summed by products
+    # the modes that see the base: exact less half-space symbols, summed by products, a batch
+    # of rows at a time (on a thin layer every mode sees the base: whole tables of them would
+    # hold N_t^2 symbols a block)
     Mx = min(m.size, int(HALFSPACE_KH * g.period_x / (2 * np.pi * layer.thickness)) + 1)
     My = min(n.size, int(HALFSPACE_KH * g.period_y / (2 * np.pi * layer.thickness)) + 1)
-    near = compliance_blocks(nu_x[:Mx, None], nu_y[None, :My], G[:Mx, None], 0.0, layer.thickness,
-                             blocks)
-    hs = halfspace_symbols(nu_x[:Mx], nu_y[:My])
-    hs["vv"], hs["vu"] = 3 * hs["ww"] - hs["uu"], hs["uv"]
-    weight = np.outer(wx[:Mx], wy[:My])
+    near = {b: np.empty((Mx, 2 * Ky - 1), dtype=complex) for b in blocks}
+
+    def correction(start: int) -> None:
+        s = slice(start, min(start + _CHUNK, Mx))
+        exact = compliance_blocks(nu_x[s, None], nu_y[None, :My], G[s, None], 0.0, layer.thickness, blocks)
+        hs = halfspace_symbols(nu_x[s], nu_y[:My])
+        hs["vv"], hs["vu"] = 3 * hs["ww"] - hs["uu"], hs["uv"]
+        weight = np.outer(wx[s], wy[:My])
+        for b in blocks:
+            corr = exact[b] - hs[b] * inv_G[s, None] if b in hs else exact[b]
+            near[b][s] = _over_n(corr * weight, b in _ODD_IN_NY, ry, Ky, False)
+
+    _in_batches(Mx, correction)
     out = {}
     for b in blocks:
-        corr = near[b] - hs[b] * inv_G[:Mx, None] if b in hs else near[b]
-        K = _over_m(_over_n(corr * weight, b in _ODD_IN_NY, ry, Ky, False), rx, Kx, False)
+        K = _over_m(near.pop(b), rx, Kx, False)
         out[b] = K + half[b] if b in half else K
     return out
 
