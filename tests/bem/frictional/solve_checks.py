@@ -112,3 +112,37 @@ def check_result(res, p, friction, kernels, coulomb=1e-6):
     assert last[:2] == (int(contact.sum()), int(st.sum())) and last[3] == om
     assert last[2] <= max(friction.direction_tol, friction.set_tol if coulomb > 1e-6 else 0)
     return wmag[sl]
+
+
+def synthetic_system(kernels, load=None, indentation=1e-4, omega=2.4, seed=0, flip=None, hole=None, turn=0.0, ops=None):
+    """A synthetic set state on the frictionless contact of 20 N: random stick/slip
+    split, slip directions (turned by ``turn`` rad) and slopes; ``hole``: a node left out
+    of the contact (splitting its grid row's run in two); ``ops``: the operators of
+    another such system (new ones otherwise)."""
+    from bem.contact import solve_normal
+    from bem.frictional import RollingOperators, RollingSetup, SetState, SetSystem
+    from bem.kinematics import rolling_radius
+
+    ops = RollingOperators(GRID, kernels) if ops is None else ops
+    X, Y = GRID.coordinates()
+    s = Sphere(0.02).profile(X, Y).ravel()
+    N0 = solve_normal(ops.op("ww"), s.reshape(GRID.shape), load=20.0).force.ravel()
+    rng = np.random.default_rng(seed)
+    contact = N0 > 0
+    if hole is not None:
+        contact[hole] = False
+    stick = contact & (rng.random(N0.size) < 0.6)
+    if flip is not None:
+        stick[flip] = ~stick[flip]
+    ang = rng.uniform(0, 2 * np.pi, N0.size) + turn
+    e = np.stack([np.cos(ang), np.sin(ang)], 1)
+    k = rng.uniform(0.1, 2.0, N0.size) * V / N0.max()
+    ell = rolling_radius(Sphere(0.02), Y).ravel()
+    arm = Sphere(0.02).rolling_arm(X, Y).ravel()
+    cons = None
+    if omega is None:
+        from bem.frictional.loading import constraint
+        cons = constraint("pushed_at_top", arm, ell, 0.02)
+    setup = RollingSetup(ops=ops, profile=s, arm=arm, ell=ell, radius=0.02, speed=V, mu=0.3, load=load,
+                         indentation=indentation, omega=omega, constraint=cons)
+    return SetSystem(setup, SetState(contact=contact, stick=stick & contact, direction=e, slope=k))

@@ -5,16 +5,11 @@ active set does; in the active set they are kept only when they change more node
 import numpy as np
 import pytest
 
-from bem import Grid, Layer, Loading, Problem, Sphere, ThreeParameterSolid, influence_kernels
+from bem import Loading, Problem, Sphere, influence_kernels
 from bem.frictional import Friction
 from bem.frictional import solve_friction
-from bem.kinematics import rolling_radius
 from bem.spectral import BLOCKS
-
-
-LAYER = Layer(5e-3, ThreeParameterSolid(G0=3.0e6, tau=0.25, f=1.0), 1000.0)
-V = 0.05
-GRID = Grid.centred((0.5e-3, 0.5e-3), (0.2, 0.2), (200, 200), (5.5e-3, 5.5e-3))
+from tests.bem.frictional.row_states import GRID, LAYER, V, synthetic_row_system, synthetic_state
 
 
 @pytest.fixture(scope="module")
@@ -24,43 +19,6 @@ def kernels():
 
 def problem(indenter=Sphere(0.02), load=150.0):
     return Problem(LAYER, indenter, GRID, Loading(V, load=load))
-
-
-def _state(kernels, seed=0):
-    """A synthetic active-set state on the frictionless contact of the coarse grid:
-    random stick/slip split, slip directions and slip-law slopes."""
-    from bem.contact import solve_normal
-    from bem.frictional import RollingOperators
-
-    ops = RollingOperators(GRID, kernels)
-    X, Y = GRID.coordinates()
-    s = Sphere(0.02).profile(X, Y)
-    N0 = solve_normal(ops.op("ww"), s, load=150.0).force.ravel()
-    rng = np.random.default_rng(seed)
-    C = np.flatnonzero(N0 > 0)
-    stick = np.zeros(N0.size, bool)
-    stick[C] = rng.random(C.size) < 0.7
-    ang = rng.uniform(0, 2 * np.pi, N0.size)
-    e = np.stack([np.cos(ang), np.sin(ang)], 1)
-    k = rng.uniform(0.1, 2.0, N0.size) * V / N0.max()
-    ell = rolling_radius(Sphere(0.02), Y).ravel()
-    arm = Sphere(0.02).rolling_arm(X, Y).ravel()
-    return ops, s.ravel(), C, stick, e, k, ell, arm
-
-
-def _system(kernels, load, indentation, omega, mode="pushed_at_top", contact=None):
-    from bem.frictional import RollingSetup, SetState, SetSystem
-    from bem.frictional.loading import constraint
-
-    ops, s, C, stick, e, k, ell, arm = _state(kernels)
-    if contact is not None:
-        C = contact
-    cons = None if omega is not None else constraint(mode, arm, ell, 0.02)
-    setup = RollingSetup(ops=ops, profile=s, arm=arm, ell=ell, radius=0.02, speed=V, mu=0.2, load=load,
-                         indentation=indentation, omega=omega, constraint=cons)
-    inside = np.zeros(s.size, bool)
-    inside[C] = True
-    return SetSystem(setup, SetState(contact=inside, stick=stick & inside, direction=e, slope=k)), C
 
 
 def test_local_row_solves_hold_their_rows_and_test_the_window_as_the_active_set(kernels, monkeypatch):
@@ -76,9 +34,9 @@ def test_local_row_solves_hold_their_rows_and_test_the_window_as_the_active_set(
     from bem.frictional import SetState, SetSystem, SolverOptions
 
     options = SolverOptions(local_rounds=1, local_window=4)  # narrower than the contact's rows here
-    system, C = _system(kernels, None, 1e-4, 2.4)
+    system, C = synthetic_row_system(kernels, None, 1e-4, 2.4)
     setup, ops = system.setup, system.ops
-    _, _, _, stick, e, k, ell, _ = _state(kernels)
+    _, _, _, stick, e, k, ell, _ = synthetic_state(kernels)
     # and contact nodes at the ends of a row and of its neighbours, where a window that
     # ran past the row's end would reach the next row's first or the last row's last node
     Ky, Kx = GRID.shape
@@ -195,9 +153,9 @@ def test_local_row_solves_take_the_default_options_without_any(kernels):
     import bem.frictional.local as local
     from bem.frictional import SetState, SolverOptions
 
-    system, C = _system(kernels, None, 1e-4, 2.4)
+    system, C = synthetic_row_system(kernels, None, 1e-4, 2.4)
     setup, ops = system.setup, system.ops
-    _, _, _, stick, e, k, _, _ = _state(kernels)
+    _, _, _, stick, e, k, _, _ = synthetic_state(kernels)
     contact = np.zeros(stick.size, bool)
     contact[C] = True
     state = SetState(contact=contact, stick=stick & contact, direction=np.where(contact[:, None], e, 0.0),

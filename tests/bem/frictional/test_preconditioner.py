@@ -11,57 +11,10 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from bem import Layer, Sphere, ThreeParameterSolid, influence_kernels
 from bem.frictional import FrictionNotConverged
 from bem.frictional import SolverOptions
 from bem.frictional import toeplitz
-from bem.frictional.loading import constraint
-from bem.grid import Grid
-from bem.spectral import BLOCKS
-
-
-LAYER = Layer(5e-3, ThreeParameterSolid(G0=3.0e6, tau=0.25, f=1.0), 1000.0)
-V = 0.05
-GRID = Grid.centred((0.5e-3, 0.5e-3), (0.1, 0.1), (100, 100), (5.5e-3, 5.5e-3))  # 23 x 23, 529 nodes
-
-
-@pytest.fixture(scope="module")
-def kernels():
-    return influence_kernels(GRID, LAYER, V, blocks=BLOCKS)
-
-
-def _system(kernels, load=None, indentation=1e-4, omega=2.4, seed=0, flip=None, hole=None, turn=0.0, ops=None):
-    """A synthetic set state on the frictionless contact of 20 N: random stick/slip
-    split, slip directions (turned by ``turn`` rad) and slopes; ``hole``: a node left out
-    of the contact (splitting its grid row's run in two); ``ops``: the operators of
-    another such system (new ones otherwise)."""
-    from bem.contact import solve_normal
-    from bem.frictional import RollingOperators, RollingSetup, SetState, SetSystem
-    from bem.kinematics import rolling_radius
-
-    ops = RollingOperators(GRID, kernels) if ops is None else ops
-    X, Y = GRID.coordinates()
-    s = Sphere(0.02).profile(X, Y).ravel()
-    N0 = solve_normal(ops.op("ww"), s.reshape(GRID.shape), load=20.0).force.ravel()
-    rng = np.random.default_rng(seed)
-    contact = N0 > 0
-    if hole is not None:
-        contact[hole] = False
-    stick = contact & (rng.random(N0.size) < 0.6)
-    if flip is not None:
-        stick[flip] = ~stick[flip]
-    ang = rng.uniform(0, 2 * np.pi, N0.size) + turn
-    e = np.stack([np.cos(ang), np.sin(ang)], 1)
-    k = rng.uniform(0.1, 2.0, N0.size) * V / N0.max()
-    ell = rolling_radius(Sphere(0.02), Y).ravel()
-    arm = Sphere(0.02).rolling_arm(X, Y).ravel()
-    cons = None
-    if omega is None:
-        from bem.frictional.loading import constraint
-        cons = constraint("pushed_at_top", arm, ell, 0.02)
-    setup = RollingSetup(ops=ops, profile=s, arm=arm, ell=ell, radius=0.02, speed=V, mu=0.3, load=load,
-                         indentation=indentation, omega=omega, constraint=cons)
-    return SetSystem(setup, SetState(contact=contact, stick=stick & contact, direction=e, slope=k))
+from tests.bem.frictional.solve_checks import GRID, V, synthetic_system
 
 
 def _runs(system):
@@ -132,9 +85,9 @@ def test_line_preconditioner_is_the_inverse_of_its_run_blocks(kernels, dtype, to
     from bem.frictional import SolverOptions
     from bem.frictional.preconditioner import LinePreconditioner
 
-    system = _system(kernels)
+    system = synthetic_system(kernels)
     if hole:
-        system = _system(kernels, hole=system.C[system.nC // 2])
+        system = synthetic_system(kernels, hole=system.C[system.nC // 2])
     runs = _runs(system)
     assert runs.max() == len(set(system.Cj)) + hole
     assert 0 < system.A.size < system.nC and system.n == 3 * system.nC
@@ -158,7 +111,7 @@ def test_a_singular_row_block_ends_the_solve_with_what_to_change(kernels, block)
     from bem.frictional import FrictionNotConverged
     from bem.frictional.preconditioner import LinePreconditioner
 
-    system = _system(kernels)
+    system = synthetic_system(kernels)
     Ky, Kx = GRID.shape
     table = system.ops.tables[block].copy()
     table[Ky - 1, Kx - 1] = 0.0
@@ -184,7 +137,7 @@ def test_line_preconditioner_on_two_threads_gives_the_same_result(kernels, monke
     from bem.frictional import SolverOptions
 
     options = SolverOptions(dense_upto=dense_upto)
-    system = _system(kernels)
+    system = synthetic_system(kernels)
     x = np.random.default_rng(3).normal(size=system.n)
     one = P.LinePreconditioner(threads=False, options=options)
     with monkeypatch.context() as m:
@@ -223,7 +176,7 @@ def test_a_forked_child_builds_and_applies_on_its_own_second_thread(kernels, mon
 
     if (os.cpu_count() or 1) < 2 or "fork" not in multiprocessing.get_all_start_methods():
         pytest.skip("needs two cores and fork")
-    system = _system(kernels)
+    system = synthetic_system(kernels)
     x = np.random.default_rng(4).normal(size=system.n)
     one = P.LinePreconditioner(threads=False)
     one.attach(system)
@@ -254,24 +207,24 @@ def test_line_preconditioner_keeps_unchanged_runs_and_rebuilds_changed_ones(kern
     from bem.frictional.preconditioner import LinePreconditioner
 
     pre = LinePreconditioner(dtype=np.float64, options=SolverOptions(filter_power=0))
-    first = _system(kernels)
+    first = synthetic_system(kernels)
     cols = _slip_columns(first)
     pre.attach(first)
     x = np.random.default_rng(2).normal(size=first.n)
-    for again in (_system(kernels, ops=first.ops), _system(kernels, turn=0.7, ops=first.ops)):
+    for again in (synthetic_system(kernels, ops=first.ops), synthetic_system(kernels, turn=0.7, ops=first.ops)):
         pre.attach(again)
         assert pre.factorised == len(cols)
         assert np.abs(again.precondition(_line_blocks(again) @ x) - x).max() < 1e-10 * np.abs(x).max()
     assert np.abs(again.precondition(_line_blocks(first) @ x) - x).max() > 1e-3 * np.abs(x).max()
     nodes = first.C[first.A[::7]]  # stick nodes turned to slip, some at places already asked for
-    changed = _system(kernels, flip=nodes, ops=first.ops)
+    changed = synthetic_system(kernels, flip=nodes, ops=first.ops)
     new = _slip_columns(changed) - cols
     assert 0 < len(new) < nodes.size
     pre.attach(changed)
     assert pre.factorised == len(cols) + len(new)
     assert np.abs(changed.precondition(_line_blocks(changed) @ x) - x).max() < 1e-10 * np.abs(x).max()
     assert np.abs(changed.precondition(_line_blocks(first) @ x) - x).max() > 1e-6
-    other = _system(kernels, seed=5)  # new operators: every column again
+    other = synthetic_system(kernels, seed=5)  # new operators: every column again
     pre.attach(other)
     assert pre.factorised == len(cols) + len(new) + len(_slip_columns(other))
 
@@ -285,7 +238,7 @@ def test_line_preconditioner_keeps_its_row_inverses_while_they_fit(kernels, monk
     from bem.frictional import SolverOptions
     from bem.frictional import preconditioner as P
 
-    system = _system(kernels)
+    system = synthetic_system(kernels)
     pre = P.LinePreconditioner()
     longest = int(np.bincount(_runs(system)).max())
     pre.attach(system)
@@ -295,7 +248,7 @@ def test_line_preconditioner_keeps_its_row_inverses_while_they_fit(kernels, monk
     wider = pre._row_inverses(system.ops, 17)
     assert wider is not first and wider.M == GRID.nodes_x == 23
     assert pre._row_inverses(system.ops, 23) is wider
-    assert pre._row_inverses(_system(kernels).ops, 5) is not wider
+    assert pre._row_inverses(synthetic_system(kernels).ops, 5) is not wider
     seen = []
     solve = toeplitz.RowInverses.solve
     monkeypatch.setattr(toeplitz.RowInverses, "solve", lambda self, op, v, threads=False: seen.append(
@@ -327,7 +280,7 @@ def test_line_preconditioner_with_global_unknowns(kernels):
     matrix assembled here from the system's own rows."""
     from bem.frictional.preconditioner import LinePreconditioner
 
-    system = _system(kernels, load=20.0, indentation=None, omega=None)
+    system = synthetic_system(kernels, load=20.0, indentation=None, omega=None)
     nC, n = system.nC, system.n
     assert n == 3 * nC + 2
     bordered = _bordered_line_blocks(system)
@@ -360,9 +313,9 @@ def test_line_preconditioner_keeps_the_schur_parts_while_the_contact_set_repeats
     eliminate = P.eliminate
     monkeypatch.setattr(P, "eliminate", lambda *a: calls.append(1) or eliminate(*a))
     pre = P.LinePreconditioner(dtype=np.float64, options=SolverOptions(filter_power=0))
-    first = _system(kernels, load=20.0, indentation=None, omega=None)
+    first = synthetic_system(kernels, load=20.0, indentation=None, omega=None)
     pre.attach(first)
-    turned = _system(kernels, load=20.0, indentation=None, omega=None, turn=0.4, ops=first.ops)
+    turned = synthetic_system(kernels, load=20.0, indentation=None, omega=None, turn=0.4, ops=first.ops)
     assert np.array_equal(turned.C, first.C) and np.array_equal(turned.stick, first.stick)
     parts = pre._schur[1]
     pre.attach(turned)
@@ -370,11 +323,11 @@ def test_line_preconditioner_keeps_the_schur_parts_while_the_contact_set_repeats
     r = np.random.default_rng(6).normal(size=turned.n)
     residual = _bordered_line_blocks(turned) @ turned.precondition(r) - r
     assert np.abs(residual[:3 * turned.nC]).max() > 1e-6 * np.abs(r).max()  # inexact: the old parts
-    flipped = _system(kernels, load=20.0, indentation=None, omega=None, flip=first.C[first.B[:1]], ops=first.ops)
+    flipped = synthetic_system(kernels, load=20.0, indentation=None, omega=None, flip=first.C[first.B[:1]], ops=first.ops)
     assert not np.array_equal(flipped.stick, first.stick)
     pre.attach(flipped)
     assert len(calls) == 1 and pre._schur[1] is parts
-    holed = _system(kernels, load=20.0, indentation=None, omega=None, hole=first.C[first.nC // 2], ops=first.ops)
+    holed = synthetic_system(kernels, load=20.0, indentation=None, omega=None, hole=first.C[first.nC // 2], ops=first.ops)
     pre.attach(holed)
     assert len(calls) == 2
     pre.attach(flipped)
@@ -389,7 +342,7 @@ def test_line_preconditioner_keeps_the_schur_parts_while_the_contact_set_repeats
                          SetState(contact=contact, stick=stick, direction=direction, slope=slope))
     pre.attach(other_mu)
     assert len(calls) == 4
-    pre.attach(_system(kernels, load=20.0, indentation=None, omega=None, flip=first.C[first.B[:1]]))
+    pre.attach(synthetic_system(kernels, load=20.0, indentation=None, omega=None, flip=first.C[first.B[:1]]))
     assert len(calls) == 5
 
 
@@ -401,7 +354,7 @@ def test_line_preconditioner_singular_complement_scales_the_globals(kernels, mon
     ``1 / a_x``."""
     from bem.frictional.preconditioner import LinePreconditioner
 
-    system = _system(kernels, load=20.0, indentation=None, omega=omega)
+    system = synthetic_system(kernels, load=20.0, indentation=None, omega=omega)
     nC, k = system.nC, system.n - 3 * system.nC
     assert k == (2 if omega is None else 1)
     monkeypatch.setattr(system, "global_rows", lambda X: np.zeros((k, X.shape[1])))
@@ -421,7 +374,7 @@ def test_line_preconditioner_columns_in_many_batches(kernels):
     from bem.frictional import SolverOptions
     from bem.frictional import preconditioner as P
 
-    system = _system(kernels)
+    system = synthetic_system(kernels)
     pre = P.LinePreconditioner(dtype=np.float64, options=SolverOptions(chunk=1, filter_power=0))
     pre.attach(system)
     lengths = {n for n, _ in _slip_columns(system)}
@@ -437,8 +390,8 @@ def test_line_preconditioner_is_exact_with_no_or_one_slip_node(kernels, keep):
     Either way the result is the exact inverse of the run blocks."""
     from bem.frictional.preconditioner import LinePreconditioner
 
-    system = _system(kernels, seed=2)
-    state = _system(kernels, seed=2, flip=system.C[system.B[keep:]])
+    system = synthetic_system(kernels, seed=2)
+    state = synthetic_system(kernels, seed=2, flip=system.C[system.B[keep:]])
     assert state.B.size == keep
     pre = LinePreconditioner(dtype=np.float64, options=SolverOptions(filter_power=0))
     pre.attach(state)

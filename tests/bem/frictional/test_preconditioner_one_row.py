@@ -7,14 +7,9 @@ places), and the row-coupling block it leaves out.
 import numpy as np
 import pytest
 
-from bem import Grid, Layer, Sphere, ThreeParameterSolid, influence_kernels
-from bem.kinematics import rolling_radius
+from bem import influence_kernels
 from bem.spectral import BLOCKS
-
-
-LAYER = Layer(5e-3, ThreeParameterSolid(G0=3.0e6, tau=0.25, f=1.0), 1000.0)
-V = 0.05
-GRID = Grid.centred((0.5e-3, 0.5e-3), (0.2, 0.2), (200, 200), (5.5e-3, 5.5e-3))
+from tests.bem.frictional.row_states import GRID, LAYER, V, synthetic_row_system, synthetic_state
 
 
 @pytest.fixture(scope="module")
@@ -22,48 +17,11 @@ def kernels():
     return influence_kernels(GRID, LAYER, V, blocks=BLOCKS)
 
 
-def _state(kernels, seed=0):
-    """A synthetic active-set state on the frictionless contact of the coarse grid:
-    random stick/slip split, slip directions and slip-law slopes."""
-    from bem.contact import solve_normal
-    from bem.frictional import RollingOperators
-
-    ops = RollingOperators(GRID, kernels)
-    X, Y = GRID.coordinates()
-    s = Sphere(0.02).profile(X, Y)
-    N0 = solve_normal(ops.op("ww"), s, load=150.0).force.ravel()
-    rng = np.random.default_rng(seed)
-    C = np.flatnonzero(N0 > 0)
-    stick = np.zeros(N0.size, bool)
-    stick[C] = rng.random(C.size) < 0.7
-    ang = rng.uniform(0, 2 * np.pi, N0.size)
-    e = np.stack([np.cos(ang), np.sin(ang)], 1)
-    k = rng.uniform(0.1, 2.0, N0.size) * V / N0.max()
-    ell = rolling_radius(Sphere(0.02), Y).ravel()
-    arm = Sphere(0.02).rolling_arm(X, Y).ravel()
-    return ops, s.ravel(), C, stick, e, k, ell, arm
-
-
-def _system(kernels, load, indentation, omega, mode="pushed_at_top", contact=None):
-    from bem.frictional import RollingSetup, SetState, SetSystem
-    from bem.frictional.loading import constraint
-
-    ops, s, C, stick, e, k, ell, arm = _state(kernels)
-    if contact is not None:
-        C = contact
-    cons = None if omega is not None else constraint(mode, arm, ell, 0.02)
-    setup = RollingSetup(ops=ops, profile=s, arm=arm, ell=ell, radius=0.02, speed=V, mu=0.2, load=load,
-                         indentation=indentation, omega=omega, constraint=cons)
-    inside = np.zeros(s.size, bool)
-    inside[C] = True
-    return SetSystem(setup, SetState(contact=inside, stick=stick & inside, direction=e, slope=k)), C
-
-
 @pytest.mark.parametrize("load, indentation, omega", [(150.0, None, None), (None, 1e-4, 2.4)])
-def test_matrix_free_product_equals_the_dense_system(kernels, load, indentation, omega):
+def test_matrix_free_product_equals_the_densesynthetic_row_system(kernels, load, indentation, omega):
     """The FFT product of the active-set system equals its dense matrix (both come from
     the same row definitions, the blocks from different code: dense tables vs FFT)."""
-    system, C = _system(kernels, load, indentation, omega)
+    system, C = synthetic_row_system(kernels, load, indentation, omega)
     assert system.n == 3 * C.size + (load is not None) + (omega is None)
     M = system.dense()
     x = np.random.default_rng(3).normal(size=system.n)
@@ -93,7 +51,7 @@ def test_line_preconditioner_inverts_a_contact_on_one_grid_row(kernels, monkeypa
     uncoupled = {b: (np.zeros_like(k) if b in ("wu", "wv", "uw", "vw") else k) for b, k in kernels.items()}
     x = np.random.default_rng(7).normal(size=3 * two.size)
     for kern, nodes, exact in ((uncoupled, row, True), (kernels, row, False), (uncoupled, two, False)):
-        system, C = _system(kern, None, 1e-4, 2.4, contact=nodes)
+        system, C = synthetic_row_system(kern, None, 1e-4, 2.4, contact=nodes)
         assert 0 < system.A.size < C.size
         y = x[:system.n]
         for dtype, tol in ((np.float64, 1e-12), (np.float32, 1e-5)):
@@ -104,7 +62,7 @@ def test_line_preconditioner_inverts_a_contact_on_one_grid_row(kernels, monkeypa
             if exact:
                 # other slip directions and slopes on the same slip places: the inverses the
                 # first attach kept are reused, and the solve is still exact
-                _, _, _, stick, e, k, _, _ = _state(kern)
+                _, _, _, stick, e, k, _, _ = synthetic_state(kern)
                 inside = np.zeros(stick.size, bool)
                 inside[nodes] = True
                 other = SetSystem(system.setup, SetState(contact=inside, stick=stick & inside, direction=e[:, ::-1],
@@ -123,8 +81,8 @@ def test_line_preconditioner_inverts_a_contact_on_one_grid_row(kernels, monkeypa
                 err = np.abs(other.precondition(other.matvec(y)) - y).max()
                 assert err < tol, (dtype, err)
     # nine slip nodes in the run (more than one block of 8 padded places), three stick
-    system, C = _system(uncoupled, None, 1e-4, 2.4, contact=row)
-    _, _, _, _, e, k, _, _ = _state(uncoupled)
+    system, C = synthetic_row_system(uncoupled, None, 1e-4, 2.4, contact=row)
+    _, _, _, _, e, k, _, _ = synthetic_state(uncoupled)
     inside = np.zeros(e.shape[0], bool)
     inside[row] = True
     stick = np.zeros_like(inside)
@@ -160,8 +118,8 @@ def test_kept_woodbury_inverses_are_told_apart_by_run_length_and_slip_places(ker
 
     Ky, Kx = GRID.shape
     uncoupled = {b: (np.zeros_like(k) if b in ("wu", "wv", "uw", "vw") else k) for b, k in kernels.items()}
-    system, _ = _system(uncoupled, None, 1e-4, 2.4, contact=(Ky // 2) * Kx + np.arange(12))
-    _, _, _, _, e, k, _, _ = _state(uncoupled)
+    system, _ = synthetic_row_system(uncoupled, None, 1e-4, 2.4, contact=(Ky // 2) * Kx + np.arange(12))
+    _, _, _, _, e, k, _, _ = synthetic_state(uncoupled)
     lines = LinePreconditioner(dtype=np.float64)
     for length, slip in ((12, range(10)), (20, range(1, 10)), (12, range(10)), (20, range(1, 10)),
                          (12, range(8)), (20, range(9))):
@@ -194,7 +152,7 @@ def test_a_row_coupling_uv_block_is_left_out_of_the_runs(kernels):
         if coupled:  # an odd-in-x uv on the row y = 0
             for b in ("uv", "vu"):
                 kern[b][Ky - 1] = 0.1 * kern["uu"][Ky - 1] * np.sign(np.arange(2 * Kx - 1) - (Kx - 1))
-        system, _ = _system(kern, None, 1e-4, 2.4, contact=row)
+        system, _ = synthetic_row_system(kern, None, 1e-4, 2.4, contact=row)
         solves = LinearSolves(dense_limit=0)
         solves.lines.attach(system)
         err = np.abs(system.precondition(system.matvec(x)) - x).max() / np.abs(x).max()
