@@ -7,30 +7,9 @@ from pathlib import Path
 import pytest
 
 from verification.cli import main as verify_main
+from tests.verification.small_cases import THICK_LAYER_CASE as CASE
 from verification.out_folder import MARKER
 
-# A thick elastic layer under a paraboloid, one coarse BEM grid: about a second to solve.
-CASE = """
-name = "hs"
-title = "A thick layer: Hertz holds"
-kind = "stationary"
-[problem]
-layer = { thickness = 0.03 }
-material = { model = "elastic", shear_modulus = 3.0e6 }
-indenter = { shape = "paraboloid", radius = 0.02 }
-loading = { load = 10.0 }
-[bem]
-spacings = [0.2e-3]
-half_width = 2.9e-3
-[analytic]
-reference = "hertz"
-[[gates]]
-quantity = "contact_radius"
-methods = ["bem"]
-against = "analytic"
-tolerance = 0.01
-reason = "the coarse grid: 0.4 % measured"
-"""
 
 THESIS = {"thesis.tex": "\\chapter{Contact}\n", "figures/fig1.pdf": "%PDF-1.4\n", ".git/HEAD": "ref: main\n"}
 

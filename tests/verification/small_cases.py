@@ -1,0 +1,24 @@
+"""Small verification cases the harness's command-line tests share."""
+
+# A thick elastic layer under a paraboloid, one coarse BEM grid: about a second to solve.
+THICK_LAYER_CASE = """
+name = "hs"
+title = "A thick layer: Hertz holds"
+kind = "stationary"
+[problem]
+layer = { thickness = 0.03 }
+material = { model = "elastic", shear_modulus = 3.0e6 }
+indenter = { shape = "paraboloid", radius = 0.02 }
+loading = { load = 10.0 }
+[bem]
+spacings = [0.2e-3]
+half_width = 2.9e-3
+[analytic]
+reference = "hertz"
+[[gates]]
+quantity = "contact_radius"
+methods = ["bem"]
+against = "analytic"
+tolerance = 0.01
+reason = "the coarse grid: 0.4 % measured"
+"""
