@@ -130,9 +130,10 @@ def problem_from_config(config: dict) -> tuple[Problem, bool]:
     if it was not already); the flag tells whether the region was sized automatically.
 
     A line case (``[indenter] shape = "line"``: plane strain, load per unit length in N/m)
-    gets a :class:`bem.plane.LineGrid`; ``_y`` grid keys and a ``[friction]`` section are
-    errors there. A ``[material] model = "dma"`` case is built at its service temperature
-    and its frequency band checked against the data (:mod:`bem.dma.case`)."""
+    gets a :class:`bem.plane.LineGrid` (``_y`` grid keys are errors there); its
+    ``[friction]`` is solved per unit length too. A ``[material] model = "dma"`` case is
+    built at its service temperature and its frequency band checked against the data
+    (:mod:`bem.dma.case`)."""
     config = casefile.validate(config, "bem")
     lay, ld, g = config["layer"], config["loading"], config["grid"]
     dma = _dma_material(config["material"])
@@ -141,11 +142,6 @@ def problem_from_config(config: dict) -> tuple[Problem, bool]:
     indenter = _indenter(config["indenter"])
     loading = Loading(ld.get("speed", 0.0), ld.get("load"), ld.get("indentation"))
     if isinstance(indenter, LineCylinder):
-        if "friction" in config:
-            raise casefile.CaseFileError(
-                "[friction] is not available for a line case ([indenter] shape = \"line\", plane strain): "
-                "frictional rolling is 3D only; remove the [friction] section or use a 3D indenter"
-            )
         grid, auto = _line_grid(g, layer, indenter, loading)
         _check_band(dma, loading, grid.spacing, grid.period)
         return Problem(layer, indenter, grid, loading), auto

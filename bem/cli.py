@@ -202,6 +202,10 @@ def _run(args, signals: _Signals) -> int:
         config = read_case(args.case, args.set)
         problem, auto = problem_from_config(config)
         friction = friction_from_config(config)
+        if args.plot and friction is not None and problem.plane_strain:
+            raise ValueError(f"--plot {args.plot}: the frictional maps are drawn for a 3D contact only; for a "
+                             "line case ([indenter] shape = \"line\" with [friction]) write --fields FILE.npz "
+                             "and plot its x, pressure and force_x (N/m per node) arrays")
         if args.error_estimate and friction is None:
             raise ValueError("--error-estimate estimates the grid error of the frictional figures: "
                              "the case needs a [friction] section")
@@ -249,20 +253,27 @@ def _print_result(args, problem, friction, result, summary, LineContact) -> None
         print(f"load                {result.load:.6g} N/m")
         print(f"peak pressure       {result.peak_pressure:.6g} Pa")
     else:
-        print(f"rolling resistance  {result.rolling_resistance:.6g} N")
+        line = friction is not None and problem.plane_strain
+        force, torque = ("N/m", "N m/m") if line else ("N", "N m")
+        if line:
+            print("plane strain (line contact), per unit length along the cylinder's axis")
+        print(f"rolling resistance  {result.rolling_resistance:.6g} {force}")
         if friction is None and problem.loading.speed > 0:
             print(f"energy figure       {result.rolling_resistance_energy:.6g} N (P_visc / V)")
         print(f"indentation         {result.indentation:.6g} m")
-        print(f"contact radius      {result.contact_radius:.6g} m (equivalent, sqrt(area/pi))")
-        print(f"load                {result.load:.6g} N")
+        if line:
+            print(f"half-width          {result.contact_radius:.6g} m (between the contact's edges)")
+        else:
+            print(f"contact radius      {result.contact_radius:.6g} m (equivalent, sqrt(area/pi))")
+        print(f"load                {result.load:.6g} {force}")
         print(f"peak pressure       {result.peak_pressure:.6g} Pa")
         if friction is not None:
-            print(f"  friction part     {result.rolling_resistance_friction:.6g} N")
-            print(f"  viscous part      {result.rolling_resistance_viscous:.6g} N")
-            print(f"energy figure       {result.rolling_resistance_energy:.6g} N ((P_visc + P_fric) / V)")
+            print(f"  friction part     {result.rolling_resistance_friction:.6g} {force}")
+            print(f"  viscous part      {result.rolling_resistance_viscous:.6g} {force}")
+            print(f"energy figure       {result.rolling_resistance_energy:.6g} {force} ((P_visc + P_fric) / V)")
             print(f"omega               {result.omega:.6g} rad/s")
-            print(f"driving force       {result.driving_force:.6g} N")
-            print(f"driving torque      {result.driving_torque:.6g} N m")
+            print(f"driving force       {result.driving_force:.6g} {force}")
+            print(f"driving torque      {result.driving_torque:.6g} {torque}")
             print(f"stick fraction      {result.stick_fraction:.4g}")
 
 

@@ -12,7 +12,8 @@ Without friction:
    the power of the pressure and the contact's edges on ``y = 0``.
 
 With a :class:`bem.frictional.Friction` the frictional solver
-(:func:`bem.frictional.solve_friction`) does the whole.
+(:func:`bem.frictional.solve_friction`) does the whole, in 3D or, on a line grid, in plane
+strain with the nine line kernels (:func:`bem.plane.line_kernels`).
 """
 
 from __future__ import annotations
@@ -25,13 +26,14 @@ from typing import TYPE_CHECKING, Callable
 import numpy as np
 
 from .contact import DENSE_LIMIT, ContactAtEdge, solve_normal
-from .energy import viscous_dissipation
+from .energy import layer_power
 from .grid import Grid
 from .operator import ComplianceOperator
-from .plane import LineContact, LineGrid, edges_along, line_dissipation, line_kernel
+from .plane import LINE_DENSE_LIMIT, LineContact, LineGrid, edges_along, line_dissipation, line_kernels
 from .problem import Problem, check_kernel_memory, compute_kernels
 from .result import NormalContact
 from .speed import check_subsonic
+from .threads import with_one_blas_thread
 
 if TYPE_CHECKING:
     from .frictional import Friction, FrictionalContact
@@ -39,23 +41,20 @@ if TYPE_CHECKING:
 
 __all__ = ["solve", "LINE_DENSE_LIMIT", "SLOPE_STEP"]
 
-#: contact sets of a line contact (one row of nodes) up to this many nodes are solved by
-#: dense LU: a row's sets are short, and LU of a few thousand unknowns takes a fraction of
-#: a second
-LINE_DENSE_LIMIT = 3000
 #: half-step of the central difference that gives the indenter's slope ``ds/dx`` for
 #: :attr:`NormalContact.pressure_power`, in node spacings (-): small against the
 #: profile's curvature, large against rounding
 SLOPE_STEP = 1e-3
 
 
+@with_one_blas_thread
 def solve(problem: Problem, friction: Friction | None = None, *,
           progress: Callable[[str], None] | None = None, grow: bool = False, kernels: dict | None = None,
           energy: bool = True, options: SolverOptions | None = None) -> NormalContact | LineContact | FrictionalContact:
     """Solve the contact of ``problem``: frictionless (at rest or in steady rolling, in 3D
     or, for a :class:`bem.indenters.LineCylinder` on a :class:`bem.plane.LineGrid`, in
     plane strain per unit length), or with Coulomb ``friction`` (steady rolling or
-    sliding, 3D).
+    sliding, in 3D or in plane strain per unit length).
 
     Parameters
     ----------
@@ -72,8 +71,8 @@ def solve(problem: Problem, friction: Friction | None = None, *,
     kernels : dict, optional
         Kernel tables of this grid, layer and speed to reuse
         (:func:`bem.problem.compute_kernels`): the ``"ww"`` table without friction (for a
-        line contact the :func:`bem.plane.line_kernel` table), all nine blocks with it. A
-        widened region computes its own.
+        line contact the :func:`bem.plane.line_kernel` table), all nine blocks with it
+        (:func:`bem.plane.line_kernels` for a line contact). A widened region computes its own.
     energy : bool
         Compute the layer's dissipation (:attr:`NormalContact.dissipation`; with friction
         ``rolling_resistance_energy``), a sum over every Fourier mode; ``nan`` without it.
@@ -85,7 +84,9 @@ def solve(problem: Problem, friction: Friction | None = None, *,
     -------
     NormalContact, LineContact or FrictionalContact
         A :class:`bem.result.NormalContact` (3D) or :class:`bem.plane.LineContact` (plane
-        strain) without friction, a :class:`bem.frictional.FrictionalContact` with it. The
+        strain) without friction, a :class:`bem.frictional.FrictionalContact` with it (its
+        forces per unit length in plane strain, :attr:`~bem.frictional.FrictionalContact.
+        plane_strain`). The
         times of the stages (s) are in ``result.record.times``.
 
     Raises
@@ -109,14 +110,14 @@ def solve(problem: Problem, friction: Friction | None = None, *,
     if options is not None:
         raise ValueError("options tune the frictional solver: give them with friction")
     p = problem
-    given = None if kernels is None else kernels["ww"]  # present: _check_inputs
+    given = kernels  # with "ww": _check_inputs
     need = (2 * p.grid.nodes_y - 1, 2 * p.grid.nodes_x - 1)
-    if given is not None and np.shape(given) != need:
-        raise ValueError(f"kernels['ww'] has shape {np.shape(given)}, a grid of {p.grid.nodes_x} x "
+    if given is not None and np.shape(given["ww"]) != need:
+        raise ValueError(f"kernels['ww'] has shape {np.shape(given['ww'])}, a grid of {p.grid.nodes_x} x "
                          f"{p.grid.nodes_y} nodes needs {need}")
     while True:
-        table, kernel_s = _kernel(p, progress) if given is None else (given, 0.0)
-        given = None
+        tables, kernel_s = _kernel(p, progress, energy) if given is None else (given, 0.0)
+        given, table = None, tables["ww"]
         X, Y = p.grid.coordinates()
         t1 = time.perf_counter()
         try:
@@ -132,7 +133,7 @@ def solve(problem: Problem, friction: Friction | None = None, *,
             p = replace(p, grid=bigger)
             continue
         t2 = time.perf_counter()
-        figures = _rolling_figures(p, res, energy)
+        figures = _rolling_figures(p, res, energy, tables)
         t3 = time.perf_counter()
         if progress and math.isfinite(figures["dissipation"]) and p.loading.speed > 0:
             unit = "N/m" if p.plane_strain else "N"
@@ -162,19 +163,28 @@ def _check_inputs(problem, friction, kernels) -> None:
                          f"{', '.join(map(repr, need))} (bem.problem.compute_kernels)")
 
 
-def _kernel(p: Problem, progress) -> tuple[np.ndarray, float]:
-    """The ``"ww"`` kernel table of the problem's grid, layer and speed, and its seconds."""
+def _kernel(p: Problem, progress, energy: bool) -> tuple[dict, float]:
+    """The ``"ww"`` kernel table of the problem's grid, layer and speed (with its power
+    table when ``energy`` asks for the dissipation, :func:`bem.problem.compute_kernels`),
+    and the seconds they took."""
     if not p.plane_strain:
-        kernels, seconds = compute_kernels(p, ("ww",), progress)
-        return kernels["ww"], seconds
+        return compute_kernels(p, ("ww",), progress, power=energy)
+    return line_tables(p, ("ww",), progress)
+
+
+def line_tables(p: Problem, blocks, progress) -> tuple[dict, float]:
+    """The line kernels (:func:`bem.plane.line_kernels`) of ``blocks`` for a plane-strain
+    problem ``p``, and their seconds, with one progress line; raises ``ValueError`` at or
+    above the shear-wave speed or beyond the machine's memory."""
     check_subsonic(p.layer, p.loading.speed)
-    check_kernel_memory(p.grid)
+    check_kernel_memory(p.grid, blocks)
     t0 = time.perf_counter()
-    table = line_kernel(p.grid, p.layer, p.loading.speed)
+    tables = line_kernels(p.grid, p.layer, p.loading.speed, tuple(blocks))
     seconds = time.perf_counter() - t0
     if progress:
-        progress(f"line compliance: {p.grid.nodes} nodes, Nt = {p.grid.truncation}, {seconds:.2f} s")
-    return table, seconds
+        which = "" if tuple(blocks) == ("ww",) else f", {len(tuple(blocks))} blocks"
+        progress(f"line compliance{which}: {p.grid.nodes} nodes, Nt = {p.grid.truncation}, {seconds:.2f} s")
+    return tables, seconds
 
 
 def _wider(p: Problem) -> Grid | LineGrid | None:
@@ -190,10 +200,11 @@ def _wider(p: Problem) -> Grid | LineGrid | None:
                         (min(1.5 * g.x[-1], cap), min(1.5 * g.y[-1], cap)))
 
 
-def _rolling_figures(p: Problem, res: NormalContact, energy: bool) -> dict:
+def _rolling_figures(p: Problem, res: NormalContact, energy: bool, kernels: dict) -> dict:
     """``speed``, ``dissipation``, ``pressure_power``, ``trailing_edge`` and
     ``leading_edge`` of the solution ``res`` of ``p`` (the fields of
-    :class:`NormalContact`, in its units)."""
+    :class:`NormalContact`, in its units); the dissipation by the power table of
+    ``kernels`` when they carry it (:func:`bem.energy.layer_power`)."""
     g, V, F = p.grid, p.loading.speed, res.force
     X, Y = g.coordinates()
     on = F > 0
@@ -212,5 +223,5 @@ def _rolling_figures(p: Problem, res: NormalContact, energy: bool) -> dict:
         figures["dissipation"] = line_dissipation(g, p.layer, V, F)
     else:
         zero = np.zeros_like(F)
-        figures["dissipation"] = viscous_dissipation(g, p.layer, V, -F, zero, zero)
+        figures["dissipation"] = layer_power(g, p.layer, V, kernels, -F, zero, zero)
     return figures

@@ -33,12 +33,28 @@ from __future__ import annotations
 
 import numpy as np
 
+from scipy.signal import fftconvolve
+
 from .grid import Grid
 from .layer import Layer, normal_compliance_outer, surface_compliance
 
-__all__ = ["viscous_dissipation"]
+__all__ = ["dissipates", "viscous_dissipation", "dissipation_from_tables", "power_key", "layer_power"]
 
 _CHUNK = 64
+
+
+def power_key(block: str) -> str:
+    """The key of ``block``'s power table in a kernel dict (:func:`bem.problem.compute_kernels`)."""
+    return f"{block}:power"
+
+
+def dissipates(grid: Grid, layer: Layer, speed: float) -> bool:
+    """Whether the layer can absorb power at ``speed`` (m/s): moving, with a loss modulus
+    at some mode's frequency ``omega_m = -nu_x V`` (``0 < m <= N_tx``)."""
+    if speed == 0:
+        return False
+    nu_x = 2 * np.pi * np.arange(1, grid.truncation_x + 1) / grid.period_x
+    return bool(np.asarray(layer.material.modulus(-nu_x * speed), dtype=complex).imag.any())
 
 
 def viscous_dissipation(grid: Grid, layer: Layer, speed: float, force_z: np.ndarray,
@@ -63,7 +79,7 @@ def viscous_dissipation(grid: Grid, layer: Layer, speed: float, force_z: np.ndar
     nu_x = 2 * np.pi * m / g.period_x
     nu_y = 2 * np.pi * n / g.period_y
     G = np.asarray(layer.material.modulus(-nu_x * speed), dtype=complex)
-    if speed == 0 or not G.imag.any():
+    if not dissipates(grid, layer, speed):
         return 0.0  # no loss at any mode felt: C_mn is Hermitian and every term vanishes
     rho_V2 = layer.inertia(speed)
     wx = np.sinc(m * g.spacing_x / g.period_x) / g.period_x
@@ -96,3 +112,41 @@ def _normal_dissipation(g: Grid, layer: Layer, speed: float, Fz, nu_x, nu_y, G, 
     power[:, 1:] += np.abs(rows @ e_neg) ** 2  # the modes (m, -n)
     C_ww = normal_compliance_outer(nu_x, nu_y, G, rho_V2, layer.thickness)
     return 2 * speed * g.period_x * g.period_y * float(np.sum(nu_x[:, None] * C_ww.imag * power))
+
+
+def dissipation_from_tables(tables: dict, speed: float, force_z: np.ndarray, force_x: np.ndarray,
+                            force_y: np.ndarray) -> float:
+    """:func:`viscous_dissipation` (W) by FFTs, from the power tables of
+    :func:`bem.spectral.kernels_with_power`: ``-V sum_PQ F_P . (W_PQ * F_Q)``, the same
+    truncated mode sum to rounding, at the cost of a few transforms of the nodal grid.
+
+    ``tables``: block name -> table; a block missing from it must meet a zero force
+    (normal forces alone need ``"ww"`` only). Forces as in :func:`viscous_dissipation`.
+    """
+    F = {"w": np.asarray(force_z, float), "u": np.asarray(force_x, float), "v": np.asarray(force_y, float)}
+    need = tuple(2 * k - 1 for k in F["w"].shape)
+    bad = {b: np.shape(t) for b, t in tables.items() if np.shape(t) != need}
+    if bad:
+        raise ValueError(f"power tables of shape {bad} cannot serve forces on {F['w'].shape[1]} x "
+                         f"{F['w'].shape[0]} nodes (a table of that grid has shape {need})")
+    total = 0.0
+    for (p, q) in ((p, q) for p in "wuv" for q in "wuv"):
+        if not (F[p].any() and F[q].any()):
+            continue
+        if p + q not in tables:
+            raise ValueError(f"the power table {p + q} is needed for these forces but was not computed")
+        # contiguous: a table cut from a wider one (a view) gives the bits of its copy
+        total += float(np.sum(F[p] * fftconvolve(np.ascontiguousarray(tables[p + q]), F[q], mode="valid")))
+    return -speed * total
+
+
+def layer_power(grid: Grid, layer: Layer, speed: float, kernels: dict | None, force_z: np.ndarray,
+                force_x: np.ndarray, force_y: np.ndarray) -> float:
+    """The power (W) the layer absorbs: by FFTs when ``kernels`` carry the power tables the
+    forces need (:func:`bem.problem.compute_kernels` with ``power``), by the mode sum of
+    :func:`viscous_dissipation` otherwise. The two agree to rounding."""
+    F = (force_z, force_x, force_y)
+    need = [p + q for p in "wuv" for q in "wuv" if np.any(F["wuv".index(p)]) and np.any(F["wuv".index(q)])]
+    if kernels and need and all(power_key(b) in kernels for b in need):
+        return dissipation_from_tables({b: kernels[power_key(b)] for b in need}, speed, *F)
+    return viscous_dissipation(grid, layer, speed, *F)

@@ -57,6 +57,11 @@ slip velocity and the torque; three consistent or reproducible choices:
   normals do not meet one axis) and a height map has only its given arm: for both,
   ``exact`` is ``small_slope`` with their own profile.
 
+A line contact (:class:`bem.indenters.LineCylinder`, plane strain) is the circle of
+radius ``R``: ``exact`` takes the circle with ``arm = x / D`` and ``l = D = sqrt(R^2 -
+x^2)``, ``small_slope`` the parabola with ``x / R`` and ``R``, ``paper`` the circle with
+``x / R`` and ``R`` (docs/derivations.md, section 8).
+
 ``paper`` is the default, for now: the frictionless solver uses the same exact profile
 with the arm ``x / R``, so ``mu -> 0`` gives back the frictionless solution, and the
 paper's figures are reproduced. ``exact`` solves the body the user described (eq. 13 for

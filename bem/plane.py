@@ -30,14 +30,20 @@ from dataclasses import dataclass
 import numpy as np
 
 from ._checks import integer, real
-from .layer import Layer, normal_compliance_outer
+from .layer import Layer, compliance_blocks, normal_compliance_outer, surface_compliance
 from .result import NormalContact
-from .spectral import chirp_sum
+from .spectral import BLOCKS, chirp_sum
 
 __all__ = [
-    "LineGrid", "LineContact", "line_mode_symbols", "line_kernel", "line_kernel_direct",
-    "line_dissipation", "contact_edges", "edges_along",
+    "LINE_DENSE_LIMIT", "LineGrid", "LineContact", "line_mode_symbols", "line_kernel", "line_kernel_direct",
+    "line_kernels", "line_dissipation", "contact_edges", "edges_along",
 ]
+
+
+#: contact sets of a line contact (one row of nodes) up to this many nodes are solved by
+#: dense LU, frictionless (one unknown a node) and frictional (three a node): a row's sets
+#: are short, and LU of a few thousand unknowns takes a fraction of a second
+LINE_DENSE_LIMIT = 3000
 
 
 def _positive(name: str, value, unit: str) -> None:
@@ -155,20 +161,31 @@ class LineGrid:
 # kernel
 
 
-def line_mode_symbols(grid: LineGrid, layer: Layer, speed: float) -> np.ndarray:
-    """Fourier weights ``g_m = sinc(m a / L) C_ww(nu_m, 0) / L`` for ``m = 0 .. N_t``.
+def line_mode_symbols(grid: LineGrid, layer: Layer, speed: float, block: str = "ww") -> np.ndarray:
+    """Fourier weights ``g_m = sinc(m a / L) C_PQ(nu_m, 0) / L`` of one compliance block
+    (``"ww"``, ``"wu"``, ... as :data:`bem.spectral.BLOCKS`) for ``m = 0 .. N_t``.
 
-    Complex, shape ``(N_t + 1,)``, in m/(N/m) = m^2/N; ``C_ww`` of the layer at
+    Complex, shape ``(N_t + 1,)``, in m/(N/m) = m^2/N; ``C_PQ`` of the layer at
     ``G*(-nu_m V)`` with the inertia ``rho V^2`` (``speed`` is ``V``, m/s). The modes
-    ``-m`` are the complex conjugates (a real relaxation function).
+    ``-m`` are the complex conjugates (a real relaxation function). At ``nu_y = 0`` the
+    blocks coupling ``v`` to ``w, u`` vanish and ``vv`` is the antiplane compliance.
     """
+    return _symbols(grid, layer, speed, (block,))[block]
+
+
+def _symbols(grid: LineGrid, layer: Layer, speed: float, blocks: tuple) -> dict:
+    """:func:`line_mode_symbols` of several blocks, the layer's modes evaluated once."""
     g = grid
     m = np.arange(g.truncation + 1)
     nu = 2 * np.pi * m / g.period
     with np.errstate(over="ignore"):  # |omega| = inf is the glassy limit, finite in every material
         G = np.asarray(layer.material.modulus(-nu * speed), dtype=complex)
-    C = normal_compliance_outer(nu, np.zeros(1), G, layer.inertia(speed), layer.thickness)[:, 0]
-    return C * np.sinc(m * g.spacing / g.period) / g.period
+    weight = np.sinc(m * g.spacing / g.period) / g.period
+    if blocks == ("ww",):
+        return {"ww": normal_compliance_outer(nu, np.zeros(1), G, layer.inertia(speed), layer.thickness)[:, 0]
+                * weight}
+    C = compliance_blocks(nu, np.zeros_like(nu), G, layer.inertia(speed), layer.thickness, blocks)
+    return {b: C[b] * weight for b in blocks}
 
 
 def _check_speed(speed: float) -> None:
@@ -176,36 +193,52 @@ def _check_speed(speed: float) -> None:
         raise ValueError(f"speed must be finite and >= 0 m/s, got {speed!r}")
 
 
-def line_kernel(grid: LineGrid, layer: Layer, speed: float) -> np.ndarray:
+def line_kernel(grid: LineGrid, layer: Layer, speed: float, block: str = "ww") -> np.ndarray:
     """Kernel table of the line grid: ``K[0, j + K - 1]`` is the deflection (m, positive
     upwards, the paper's sign) at offset ``j a`` from a unit line load (N/m, in tension)
-    on a patch, for ``j = -(K-1) .. K-1``; shape ``(1, 2 K - 1)``.
+    on a patch, for ``j = -(K-1) .. K-1``; shape ``(1, 2 K - 1)``. Another ``block``
+    (:data:`bem.spectral.BLOCKS`, displacement then load direction) gives that block's
+    table in the same layout: the ``n = 0`` row of the 3D kernel per unit length, which
+    :func:`line_kernels` gathers for the frictional solver.
 
     Evaluated as ``Re(g_0 + 2 sum_{m >= 1} g_m exp(2 pi i m j a / L))`` by one chirp-z
     (Bluestein) transform, ``O(N_t log N_t)``. Raises ``ValueError`` for a bad speed or a
     non-finite kernel (naming the speed and the grid).
     """
     _check_speed(speed)
-    sym = line_mode_symbols(grid, layer, speed)
-    coef = 2 * sym
-    coef[0] = sym[0]
+    return _tables(grid, _symbols(grid, layer, speed, (block,)), speed)[block]
+
+
+def _tables(grid: LineGrid, symbols: dict, speed: float) -> dict:
+    """The kernel tables of the blocks' ``symbols`` (:func:`line_kernel`)."""
     K = grid.nodes
-    table = chirp_sum(coef, grid.spacing / grid.period, -(K - 1), 2 * K - 1).real[None, :]
+    names = list(symbols)
+    coef = 2 * np.stack([symbols[b] for b in names])
+    coef[:, 0] /= 2
+    tables = chirp_sum(coef, grid.spacing / grid.period, -(K - 1), 2 * K - 1).real  # one batched transform
+    out = {}
+    for block, table in zip(names, tables):
+        _check_finite(table, block, grid, speed)
+        out[block] = table[None, :]
+    return out
+
+
+def _check_finite(table: np.ndarray, block: str, grid: LineGrid, speed: float) -> None:
+    K = grid.nodes
     if not np.isfinite(table).all():
         raise ValueError(
-            f"the line kernel is not finite at speed = {speed:g} m/s on the grid of {K} nodes "
+            f"the line kernel {block!r} is not finite at speed = {speed:g} m/s on the grid of {K} nodes "
             f"(a = {grid.spacing:g} m, L = {grid.period:g} m, N_t = {grid.truncation}): the material's "
             "modulus or the layer's compliance is not finite at some mode; use a lower loading.speed "
             "or check the material model"
         )
-    return table
 
 
-def line_kernel_direct(grid: LineGrid, layer: Layer, speed: float) -> np.ndarray:
+def line_kernel_direct(grid: LineGrid, layer: Layer, speed: float, block: str = "ww") -> np.ndarray:
     """The same table by summing every mode ``|m| <= N_t`` explicitly (``O(N_t K)``):
     the slow reference for :func:`line_kernel`."""
     _check_speed(speed)
-    sym = line_mode_symbols(grid, layer, speed)
+    sym = line_mode_symbols(grid, layer, speed, block)
     full = np.concatenate([np.conj(sym[:0:-1]), sym])  # m = -N_t .. N_t
     m = np.arange(-grid.truncation, grid.truncation + 1)
     K = grid.nodes
@@ -214,30 +247,49 @@ def line_kernel_direct(grid: LineGrid, layer: Layer, speed: float) -> np.ndarray
     return (np.exp(1j * phase) @ full).real[None, :]
 
 
-def line_dissipation(grid: LineGrid, layer: Layer, speed: float, force: np.ndarray) -> float:
-    """Power dissipated per unit length (W/m) by compressive nodal line loads ``force``
-    (N/m, shape ``(nodes,)`` or ``(1, nodes)``) in steady motion at ``speed`` (m/s).
+def line_kernels(grid: LineGrid, layer: Layer, speed: float, blocks=tuple(BLOCKS)) -> dict:
+    """:func:`line_kernel` of each of ``blocks`` (default all nine), a dict of tables of
+    shape ``(1, 2 K - 1)`` (m/(N/m)): the line grid's counterpart of
+    :func:`bem.spectral.influence_kernels` for the frictional solver. In plane strain
+    ``wv, vw, uv, vu`` are zero (``nu_y = 0``) and ``vv`` is the antiplane compliance."""
+    _check_speed(speed)
+    return _tables(grid, _symbols(grid, layer, speed, tuple(blocks)), speed)
 
-    The 1-D form of :func:`bem.energy.viscous_dissipation` (``n = 0`` only, normal
-    traction only): ``P = 2 V L sum_{m > 0} nu_m |t_m|^2 Im C_ww(nu_m, 0)`` with
-    ``t_m = sinc(m a / L) / L sum_N F_N exp(-i nu_m x_N)`` the Fourier coefficients of the
-    traction. It integrates the layer's continuous fields, independently of the nodal
-    collocation and of the rolling arm; ``P / V`` is the energy figure of the rolling
-    resistance (N/m).
+
+def line_dissipation(grid: LineGrid, layer: Layer, speed: float, force: np.ndarray,
+                     force_x: np.ndarray | None = None) -> float:
+    """Power dissipated per unit length (W/m) by compressive nodal line loads ``force``
+    (N/m, shape ``(nodes,)`` or ``(1, nodes)``) and, if given, tangential ones ``force_x``
+    (N/m on the layer along ``+x``) in steady motion at ``speed`` (m/s).
+
+    The 1-D form of :func:`bem.energy.viscous_dissipation` (``n = 0`` only):
+    ``P = 2 V L sum_{m > 0} nu_m Im(t_m^H C(nu_m, 0) t_m)`` with ``t_m = sinc(m a / L) / L
+    sum_N (-F_N, S_N) exp(-i nu_m x_N)`` the Fourier coefficients of the traction
+    (``sigma_z`` in tension, ``tau_xz``) and ``C`` the ``(w, u)`` block of the surface
+    compliance; normal loads alone, ``|t_m|^2 Im C_ww``. It integrates the layer's
+    continuous fields, independently of the nodal collocation and of the rolling arm;
+    ``P / V`` is the energy figure of the rolling resistance (N/m).
     """
     g = grid
     F = np.asarray(force, float).reshape(-1)
+    S = None if force_x is None else np.asarray(force_x, float).reshape(-1)
     m = np.arange(1, g.truncation + 1)
     nu = 2 * np.pi * m / g.period
     with np.errstate(over="ignore"):
         G = np.asarray(layer.material.modulus(-nu * speed), dtype=complex)
-    C = normal_compliance_outer(nu, np.zeros(1), G, layer.inertia(speed), layer.thickness)[:, 0]
     # t_m by chirp-z: sum_N F_N exp(-2 pi i m x_N / L), x_N = (N - (K-1)/2) a
     K = g.nodes
     shift = np.exp(2j * np.pi * np.mod(m * (K - 1) / 2 * g.spacing / g.period, 1.0))
-    t = chirp_sum(F.astype(complex)[None, :], -g.spacing / g.period, 1, g.truncation)[0] * shift
-    t *= np.sinc(m * g.spacing / g.period) / g.period
-    return float(2 * speed * g.period * np.sum(nu * np.abs(t) ** 2 * C.imag))
+    weight = shift * np.sinc(m * g.spacing / g.period) / g.period
+    rows = np.stack([-F] if S is None or not S.any() else [-F, S]).astype(complex)
+    t = chirp_sum(rows, -g.spacing / g.period, 1, g.truncation) * weight
+    if t.shape[0] == 1:
+        C = normal_compliance_outer(nu, np.zeros(1), G, layer.inertia(speed), layer.thickness)[:, 0]
+        quad = np.abs(t[0]) ** 2 * C
+    else:
+        C = surface_compliance(nu, np.zeros_like(nu), G, layer.inertia(speed), layer.thickness)[:, :2, :2]
+        quad = np.einsum("im,mij,jm->m", t.conj(), C, t)
+    return float(2 * speed * g.period * np.sum(nu * quad.imag))
 
 
 # ---------------------------------------------------------------------------------------

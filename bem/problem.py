@@ -15,8 +15,10 @@ from .grid import Grid
 from .layer import Layer
 from .indenters import LineCylinder
 from .plane import LineGrid
-from .spectral import influence_kernels
+from .energy import dissipates, power_key
+from .spectral import influence_kernels, kernels_with_power
 from .speed import RAYLEIGH_RATIO, check_subsonic  # noqa: F401  (public here too)
+from .threads import with_one_blas_thread
 
 __all__ = ["Loading", "Problem", "check_subsonic", "compute_kernels", "auto_half_width", "kernel_memory",
            "check_kernel_memory"]
@@ -188,19 +190,31 @@ def auto_half_width(layer: Layer, indenter, loading: Loading, spacing: float) ->
     return half if length is None else max(half, length / 2 + 2 * spacing)
 
 
-def compute_kernels(problem: Problem, blocks, progress: Callable[[str], None] | None = None) -> tuple[dict, float]:
+@with_one_blas_thread
+def compute_kernels(problem: Problem, blocks, progress: Callable[[str], None] | None = None, *,
+                    power: bool = False) -> tuple[dict, float]:
     """Kernel tables of ``blocks`` for the problem's grid, layer and speed, with one
-    progress line; returns them and the seconds they took.
+    progress line; returns them and the seconds they took. With ``power``, and when the
+    layer absorbs power at this speed (:func:`bem.energy.dissipates`), the same dict holds
+    the power tables of those blocks as well, under :func:`bem.energy.power_key` (from the
+    same mode symbols, :func:`bem.spectral.kernels_with_power`): the energy figure then
+    costs a few FFTs (:func:`bem.energy.dissipation_from_tables`).
 
     Raises ``ValueError`` at or above the shear-wave speed (:func:`check_subsonic`) and
     when a kernel is not finite (:func:`bem.spectral.influence_kernels`)."""
     p = problem
     check_subsonic(p.layer, p.loading.speed)
-    check_kernel_memory(p.grid, blocks)
+    power = power and dissipates(p.grid, p.layer, p.loading.speed)
+    check_kernel_memory(p.grid, tuple(blocks) * (2 if power else 1))
     t0 = time.perf_counter()
-    kernels = influence_kernels(p.grid, p.layer, p.loading.speed, blocks=blocks)
+    if power:
+        kernels, tables = kernels_with_power(p.grid, p.layer, p.loading.speed, blocks=blocks)
+        kernels.update({power_key(b): t for b, t in tables.items()})
+    else:
+        kernels = influence_kernels(p.grid, p.layer, p.loading.speed, blocks=blocks)
     seconds = time.perf_counter() - t0
     if progress:
-        progress(f"compliance ({len(kernels)} block(s)): {p.grid.nodes_x} x {p.grid.nodes_y} nodes, "
+        what = f"{len(tuple(blocks))} block(s)" + (" and their power tables" if power else "")
+        progress(f"compliance ({what}): {p.grid.nodes_x} x {p.grid.nodes_y} nodes, "
                  f"Nt = {p.grid.truncation_x} x {p.grid.truncation_y}, {seconds:.2f} s")
     return kernels, seconds

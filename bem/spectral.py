@@ -22,6 +22,7 @@ traction sign of the paper (``sigma_z`` positive in tension, displacements posit
 
 from __future__ import annotations
 
+import functools
 import os
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
@@ -32,7 +33,7 @@ import scipy.fft as sfft
 from .grid import Grid
 from .layer import Layer, compliance_blocks, normal_compliance_outer, surface_compliance
 
-__all__ = ["BLOCKS", "chirp_sum", "influence_kernels", "influence_kernels_direct", "mode_symbols"]
+__all__ = ["BLOCKS", "chirp_sum", "influence_kernels", "influence_kernels_direct", "kernels_with_power", "mode_symbols"]
 
 #: block name -> (row, column) in the 3x3 compliance, rows/cols ordered (w, u, v)
 BLOCKS = {p + q: (i, j) for i, p in enumerate("wuv") for j, q in enumerate("wuv")}
@@ -110,25 +111,37 @@ def _symbol_rows(layer: Layer, nu_x, nu_y, G, rho_V2: float, weight, blocks) -> 
     return {b: parts[b] * weight for b in blocks}
 
 
-def _kernels_streamed(grid: Grid, layer: Layer, speed: float, blocks: tuple) -> dict:
+def _kernels_streamed(grid: Grid, layer: Layer, speed: float, blocks: tuple, power: bool = False):
     """:func:`kernels_from_symbols` of :func:`mode_symbols` a batch of ``m`` at a time: each
     batch's symbols are summed over ``n`` at once, so only ``(N_tx + 1) x (2 K_y - 1)``
     partial sums a block are kept, not every mode's symbol (at 513 x 513 nodes, ``N_t =
-    4924``, 9 x 0.39 GB of symbols). The same sums, in the same order."""
+    4924``, 9 x 0.39 GB of symbols). The same sums, in the same order. With ``power`` the
+    :func:`power_kernels` tables from the same symbols as well (``{}`` without)."""
     Kx, Ky = grid.nodes_x, grid.nodes_y
     chirp = max(Kx, Ky) > _MATMUL_NODES
     md = _modes(grid, layer, speed)
     rho_V2 = layer.inertia(speed)
     H = {b: np.empty((md.m.size, 2 * Ky - 1), dtype=complex) for b in blocks}
+    Hp = {b: np.empty((md.m.size, 2 * Ky - 1), dtype=complex) for b in blocks} if power else {}
 
     def work(start: int) -> None:
         s = slice(start, min(start + _CHUNK, md.m.size))
         weight = np.outer(md.wx[s], md.wy)
         for b, sym in _symbol_rows(layer, md.nu_x[s], md.nu_y, md.G[s], rho_V2, weight, blocks).items():
             H[b][s] = _over_n(sym, b in _ODD_IN_NY, md.ry, Ky, chirp)
+            if power:
+                Hp[b][s] = _over_n(sym, b in _ODD_IN_NY, md.ry, Ky, chirp, md.wy) * _power_rows(grid, md, s)
 
     _in_batches(md.m.size, work)
-    return {b: _over_m(H.pop(b), md.rx, Kx, chirp) for b in blocks}
+    return ({b: _over_m(H.pop(b), md.rx, Kx, chirp) for b in blocks},
+            {b: _over_m(Hp.pop(b), md.rx, Kx, chirp) for b in blocks} if power else {})
+
+
+def _power_rows(grid: Grid, md: "_Modes", s: slice) -> np.ndarray:
+    """With the sinc weight ``wy(n)`` inside the sum over ``n``, what turns a kernel's
+    partial sums into a :func:`kernels_with_power` table's: ``i nu_x L_x L_y wx(m)``
+    (rows ``s`` of ``m``, a column)."""
+    return ((1j * grid.period_x * grid.period_y) * md.nu_x[s] * md.wx[s])[:, None]
 
 
 def _moduli(layer: Layer, nu_x: np.ndarray, speed: float) -> np.ndarray:
@@ -243,27 +256,41 @@ def halfspace_symbols(nu_x: np.ndarray, nu_y: np.ndarray) -> dict:
     return {"ww": 0.5 * inv_k, "uu": (0.5 * nx * nx + ny * ny) * inv_k3, "uv": (-0.5 * nx) * ny * inv_k3}
 
 
-def _over_n(r: np.ndarray, odd: bool, ratio: float, count: int, chirp: bool) -> np.ndarray:
+def _over_n(r: np.ndarray, odd: bool, ratio: float, count: int, chirp: bool,
+            weight_n: np.ndarray | None = None) -> np.ndarray:
     """``h(m, dy) = sum_{|n| <= N_t} g(m, n) exp(2 pi i ratio n dy)`` for ``|dy| < count``
-    (complex, ``(rows, 2 count - 1)``) of ``g(m, n) = r(m, n)`` for ``n >= 0`` (``r`` real or
-    complex) and ``g(m, -n) = -g(m, n)`` (``odd``) or ``+g(m, n)``."""
-    n = np.arange(r.shape[1])
+    (complex, ``(rows, 2 count - 1)``) of ``g(m, n) = r(m, n) w(n)`` for ``n >= 0`` (``r``
+    real or complex, ``w`` the ``weight_n``, 1 without) and ``g(m, -n) = -g(m, n)``
+    (``odd``) or ``+g(m, n)``."""
     if chirp:
+        r = r if weight_n is None else r * weight_n
         coef = 2 * r.astype(complex)
         coef[:, 0] = 0 if odd else r[:, 0]
         S = chirp_sum(coef, ratio, -(count - 1), 2 * count - 1)
         return 0.5 * (S - S[:, ::-1]) if odd else 0.5 * (S + S[:, ::-1])
-    ph = _turns(ratio, n, np.arange(count))  # (n, dy >= 0)
-    if odd:  # sum_n g (e^{i..} - e^{-i..}) = 2 i sum_{n>0} g sin
-        T = 2 * np.sin(ph)
-    else:
-        T = 2 * np.cos(ph)
-        T[0] = 1.0
+    T = _trig_table(ratio, r.shape[1], count, odd)
+    if weight_n is not None:
+        T = weight_n[:, None] * T
     h = (r.real @ T + 1j * (r.imag @ T)) if np.iscomplexobj(r) else (r @ T).astype(complex)
     if odd:
         h = 1j * h
         return np.concatenate([-h[:, :0:-1], h], axis=1)
     return np.concatenate([h[:, :0:-1], h], axis=1)
+
+
+@functools.lru_cache(maxsize=8)
+def _trig_table(ratio: float, modes: int, count: int, odd: bool) -> np.ndarray:
+    """``2 sin`` (``odd``) or ``2 cos`` (first row 1) of the phases ``2 pi ratio n dy``,
+    ``0 <= n < modes``, ``0 <= dy < count``: the same table for every batch and block
+    (read-only)."""
+    ph = _turns(ratio, np.arange(modes), np.arange(count))
+    if odd:  # sum_n g (e^{i..} - e^{-i..}) = 2 i sum_{n>0} g sin
+        T = 2 * np.sin(ph)
+    else:
+        T = 2 * np.cos(ph)
+        T[0] = 1.0
+    T.flags.writeable = False
+    return T
 
 
 def _over_m(h: np.ndarray, ratio: float, count: int, chirp: bool) -> np.ndarray:
@@ -280,7 +307,7 @@ def _over_m(h: np.ndarray, ratio: float, count: int, chirp: bool) -> np.ndarray:
     return ((np.cos(phx) * wm) @ h.real - (np.sin(phx) * wm) @ h.imag).T
 
 
-def _kernels_halfspace_split(grid: Grid, layer: Layer, speed: float, blocks: tuple) -> dict:
+def _kernels_halfspace_split(grid: Grid, layer: Layer, speed: float, blocks: tuple, power: bool = False):
     """The kernels without inertia (``rho V^2 = 0``), split into the half-space modes'
     sum and a correction on the few modes that see the base (``k H <= HALFSPACE_KH``).
 
@@ -290,7 +317,8 @@ def _kernels_halfspace_split(grid: Grid, layer: Layer, speed: float, blocks: tup
     before the factor ``1 / G`` of the row, the normal-tangential blocks have no
     half-space part, ``vu = uv`` and ``vv = 3 ww - uu``. The modes near the origin take the
     exact symbols (:func:`bem.layer.compliance_blocks`) less the half-space ones. The same
-    truncated sum as :func:`kernels_from_symbols`, to rounding.
+    truncated sum as :func:`kernels_from_symbols`, to rounding. With ``power`` the
+    :func:`power_kernels` tables from the same symbols as well (``{}`` without).
     """
     g = grid
     Kx, Ky = g.nodes_x, g.nodes_y
@@ -300,28 +328,30 @@ def _kernels_halfspace_split(grid: Grid, layer: Layer, speed: float, blocks: tup
     inv_G = 1.0 / G
     need = {"ww": ("ww", "vv"), "uu": ("uu", "vv"), "uv": ("uv", "vu")}
     parts = [b for b in ("ww", "uu", "uv") if any(t in blocks for t in need[b])]
-    H = {b: np.empty((m.size, 2 * Ky - 1), dtype=complex) for b in parts}
+    kinds = ("kernel", "power") if power else ("kernel",)
+    H = {(k, b): np.empty((m.size, 2 * Ky - 1), dtype=complex) for k in kinds for b in parts}
 
     def work(start: int) -> None:
         s = slice(start, min(start + _CHUNK, m.size))
         sym = halfspace_symbols(nu_x[s], nu_y)
         weight = np.outer(wx[s], wy)
-        for b in parts:
-            H[b][s] = _over_n(sym[b] * weight, b in _ODD_IN_NY, ry, Ky, chirp) * inv_G[s, None]
+        for k, b in H:
+            h = _over_n(sym[b] * weight, b in _ODD_IN_NY, ry, Ky, chirp, wy if k == "power" else None)
+            H[k, b][s] = h * inv_G[s, None] * (_power_rows(g, md, s) if k == "power" else 1.0)
 
     _in_batches(m.size, work)
-    half = {b: _over_m(H[b], rx, Kx, chirp) for b in parts}
-    del H
-    if "vv" in blocks:
-        half["vv"] = 3 * half["ww"] - half["uu"]
-    if "vu" in blocks:
-        half["vu"] = half["uv"]
+    half = {key: _over_m(H.pop(key), rx, Kx, chirp) for key in list(H)}
+    for k in kinds:
+        if "vv" in blocks:
+            half[k, "vv"] = 3 * half[k, "ww"] - half[k, "uu"]
+        if "vu" in blocks:
+            half[k, "vu"] = half[k, "uv"]
     # the modes that see the base: exact less half-space symbols, summed by products, a batch
     # of rows at a time (on a thin layer every mode sees the base: whole tables of them would
     # hold N_t^2 symbols a block)
     Mx = min(m.size, int(HALFSPACE_KH * g.period_x / (2 * np.pi * layer.thickness)) + 1)
     My = min(n.size, int(HALFSPACE_KH * g.period_y / (2 * np.pi * layer.thickness)) + 1)
-    near = {b: np.empty((Mx, 2 * Ky - 1), dtype=complex) for b in blocks}
+    near = {(k, b): np.empty((Mx, 2 * Ky - 1), dtype=complex) for k in kinds for b in blocks}
 
     def correction(start: int) -> None:
         s = slice(start, min(start + _CHUNK, Mx))
@@ -329,16 +359,17 @@ def _kernels_halfspace_split(grid: Grid, layer: Layer, speed: float, blocks: tup
         hs = halfspace_symbols(nu_x[s], nu_y[:My])
         hs["vv"], hs["vu"] = 3 * hs["ww"] - hs["uu"], hs["uv"]
         weight = np.outer(wx[s], wy[:My])
-        for b in blocks:
+        for k, b in near:
             corr = exact[b] - hs[b] * inv_G[s, None] if b in hs else exact[b]
-            near[b][s] = _over_n(corr * weight, b in _ODD_IN_NY, ry, Ky, False)
+            h = _over_n(corr * weight, b in _ODD_IN_NY, ry, Ky, False, wy[:My] if k == "power" else None)
+            near[k, b][s] = h * _power_rows(g, md, s) if k == "power" else h
 
     _in_batches(Mx, correction)
-    out = {}
-    for b in blocks:
-        K = _over_m(near.pop(b), rx, Kx, False)
-        out[b] = K + half[b] if b in half else K
-    return out
+    out = {k: {} for k in ("kernel", "power")}
+    for k, b in list(near):
+        K = _over_m(near.pop((k, b)), rx, Kx, False)
+        out[k][b] = K + half[k, b] if (k, b) in half else K
+    return out["kernel"], out["power"]
 
 
 def influence_kernels(grid: Grid, layer: Layer, speed: float, blocks=("ww",)) -> dict:
@@ -363,14 +394,33 @@ def influence_kernels(grid: Grid, layer: Layer, speed: float, blocks=("ww",)) ->
         If ``speed`` is negative or not finite, or a kernel is not finite (naming the
         speed and the grid): a solve never proceeds on NaN compliances.
     """
+    return _tables(grid, layer, speed, blocks, power=False)[0]
+
+
+def kernels_with_power(grid: Grid, layer: Layer, speed: float, blocks=("ww",)) -> tuple[dict, dict]:
+    """:func:`influence_kernels` and, from the same mode symbols, the power tables of the
+    same blocks: the steady power the layer absorbs from nodal forces spread on their
+    patches is a quadratic form of the forces,
+
+        P_visc = -V sum_PQ sum_MN F_P(M) W_PQ(x_M - x_N) F_Q(N),
+        W_PQ(d) = L_x L_y sum_mn i nu_x (sinc_x sinc_y / (L_x L_y))^2 C_PQ(nu; G*(omega_m)) exp(i nu . d)
+
+    (the mode sum of :func:`bem.energy.viscous_dissipation` with the force transforms
+    written out), tables like the kernels' (``(2 K_y - 1, 2 K_x - 1)``, real, 1/m).
+    Computing them costs one more transform of each batch of symbols, not another
+    evaluation of the layer's compliance at every mode: the power of any forces is then
+    a few FFTs (:func:`bem.energy.dissipation_from_tables`).
+    """
+    return _tables(grid, layer, speed, blocks, power=True)
+
+
+def _tables(grid: Grid, layer: Layer, speed: float, blocks, power: bool) -> tuple[dict, dict]:
     if not (np.isfinite(speed) and speed >= 0):
         raise ValueError(f"speed must be finite and >= 0 m/s, got {speed!r}")
     blocks = _check_blocks(blocks)
-    if layer.inertia(speed) == 0:
-        out = _kernels_halfspace_split(grid, layer, speed, blocks)
-    else:
-        out = _kernels_streamed(grid, layer, speed, blocks)
-    bad = [b for b, k in out.items() if not np.isfinite(k).all()]
+    split = _kernels_halfspace_split if layer.inertia(speed) == 0 else _kernels_streamed
+    out, pw = split(grid, layer, speed, blocks, power)
+    bad = [b for b, k in (*out.items(), *pw.items()) if not np.isfinite(k).all()]
     if bad:
         g = grid
         raise ValueError(
@@ -381,7 +431,7 @@ def influence_kernels(grid: Grid, layer: Layer, speed: float, blocks=("ww",)) ->
             f"frequencies |omega_m| = 2 pi m V / L_x <= {2 * np.pi * g.truncation_x * speed / g.period_x:.3g} "
             "rad/s; use a lower loading.speed or check the material model"
         )
-    return out
+    return out, pw
 
 
 def influence_kernels_direct(grid: Grid, layer: Layer, speed: float, blocks=("ww",)) -> dict:

@@ -204,7 +204,8 @@ SCHEMA: tuple = (
         discretization=True,
     ),
     Section(
-        "friction", "Coulomb friction at the contact (absent: frictionless); needs speed > 0",
+        "friction", "Coulomb friction at the contact (absent: frictionless); needs speed > 0; with shape = "
+        "\"line\" solved in plane strain, forces per unit length (N/m)",
         keys=(
             Key("mu", "number", "-", "coefficient of sliding friction", ("bem",), required=True, rule=">=0"),
             Key("mode", "string", "-", "loading mode: Q at the top (T = Q R, eq. 4), Q at the axle (T = 0), "
@@ -224,7 +225,8 @@ SCHEMA: tuple = (
             Key("set_tol", "number", "-", "accepted stick/slip border violation in a two-state cycle",
                 ("bem",), default=1e-2, rule=">=0"),
             Key("dense_limit", "integer", "-", "unknowns (3 per contact node) solved by dense LU; above, "
-                "GMRES with FFT products (O(N) memory)", ("bem",), default=600, rule=">=0"),
+                "GMRES with FFT products (O(N) memory); a line contact takes dense LU up to 3000 contact nodes "
+                "whatever this is", ("bem",), default=600, rule=">=0"),
         ),
         readers=("bem",),
     ),

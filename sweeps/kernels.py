@@ -116,9 +116,10 @@ def fit_kernels(kernels: dict, grid: Grid) -> dict:
 
 
 def form_kernels(problem: Problem, blocks: tuple) -> tuple[dict, float]:
-    """Form the kernel tables (a Dask task): :func:`bem.problem.compute_kernels`; returns
-    them and the seconds taken."""
-    return compute_kernels(problem, blocks)
+    """Form the kernel tables (a Dask task): :func:`bem.problem.compute_kernels`, with the
+    power tables that make every point's energy figure a few FFTs; returns them and the
+    seconds taken."""
+    return compute_kernels(problem, blocks, power=True)
 
 
 class KernelCache:
@@ -162,7 +163,7 @@ class KernelCache:
                 missing = [b for b in group.blocks if b not in sums or b not in data.files]
                 if missing:
                     return None, f"{path} lacks the block(s) {', '.join(missing)}"
-                tables = {b: data[b] for b in group.blocks}
+                tables = {name: data[name] for name in sums if name in data.files}  # power tables too
         except Exception as exc:  # a damaged file: zip, npy or JSON errors of every kind
             return None, f"{path} cannot be read ({type(exc).__name__}: {exc})"
         for b, table in tables.items():

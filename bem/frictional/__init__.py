@@ -24,6 +24,10 @@ Modules, one concept each:
 * :mod:`~bem.frictional.solve`: the entry points :func:`solve_friction` (a
   :class:`bem.problem.Problem`) and :func:`solve_rolling` (prepared operators).
 
+In plane strain (a :class:`bem.plane.LineGrid`, one row of nodes) the same solver runs on
+the nine line kernels (:func:`bem.plane.line_kernels`), every force per unit length
+(docs/derivations.md, section 8).
+
 Linear solves go through :class:`bem.linear.LinearSolver` (shared with the frictionless
 solver): dense LU up to ``Friction.dense_limit`` unknowns, above it flexible
 right-preconditioned GMRES (:func:`bem.linear.fgmres`) with FFT products and the line

@@ -25,6 +25,7 @@ from typing import Callable
 
 from ..convergence import Convergence, richardson
 from ..grid import Grid
+from ..plane import LineGrid
 
 __all__ = ["SCALARS", "GridErrorEstimate", "coarsened_grid", "estimate_grid_error"]
 
@@ -53,16 +54,19 @@ class GridErrorEstimate:
     figures : dict
         Scalar name (:data:`SCALARS`) to :class:`bem.convergence.Convergence`:
         values coarse to fine, observed order, extrapolated limit, error of the finest.
+    per_length : bool
+        A line contact (plane strain): the forces are per unit length (N/m).
     """
 
     spacings: tuple
     figures: dict
+    per_length: bool = False
 
     def lines(self) -> list[str]:
         """One human-readable line per scalar, with its unit."""
         out = [f"grid error (Richardson from a = {', '.join(f'{a * 1e3:g}' for a in self.spacings)} mm):"]
         for name, c in self.figures.items():
-            unit = SCALARS[name]
+            unit = SCALARS[name] + ("/m" if self.per_length and SCALARS[name] == "N" else "")
             order = f"order {c.order:.2f}" if c.asymptotic else "not asymptotic: 3 x last change"
             out.append(f"  {name:28s} {c.values[-1]:.6g} {unit}, limit {c.extrapolated:.6g} {unit} "
                        f"+/- {c.error_finest:.2g} {unit} ({order})")
@@ -81,6 +85,9 @@ def coarsened_grid(grid: Grid, factor: int) -> Grid:
     (the half widths of the fine grid), periods and truncations."""
     if not (isinstance(factor, int) and factor >= 1):
         raise ValueError(f"factor must be an integer >= 1, got {factor!r}")
+    if isinstance(grid, LineGrid):
+        return LineGrid.centred(grid.spacing * factor, grid.period, grid.truncation,
+                                (grid.nodes - 1) / 2 * grid.spacing)
     hw = ((grid.nodes_x - 1) / 2 * grid.spacing_x, (grid.nodes_y - 1) / 2 * grid.spacing_y)
     return Grid.centred((grid.spacing_x * factor, grid.spacing_y * factor), (grid.period_x, grid.period_y),
                         (grid.truncation_x, grid.truncation_y), hw)
@@ -105,4 +112,4 @@ def estimate_grid_error(problem, friction, fine=None, progress: Callable[[str], 
         results.append(solve_friction(p, friction, options=options)[0])
     results.append(fine if fine is not None else solve_friction(problem, friction, options=options)[0])
     figures = {name: richardson([getattr(r, name) for r in results]) for name in SCALARS}
-    return GridErrorEstimate(tuple(r.grid.spacing_x for r in results), figures)
+    return GridErrorEstimate(tuple(r.grid.spacing_x for r in results), figures, problem.plane_strain)

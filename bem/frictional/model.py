@@ -50,6 +50,7 @@ import numpy as np
 from ..contact import SHARED_SCALARS, ContactError, ContactFigures, ContactNotConverged, grid_summary
 from .._checks import NotANumber, real
 from ..grid import Grid
+from ..plane import LineGrid, edges_along
 from ..kinematics import DEFAULT_KINEMATICS, KINEMATICS
 
 __all__ = [
@@ -195,9 +196,16 @@ class FrictionRecord:
 class FrictionalContact(ContactFigures):
     """Result of a frictional rolling/sliding solve; fields are ``(K_y, K_x)`` arrays.
 
+    In plane strain (a :class:`bem.plane.LineGrid`, :attr:`plane_strain`) the fields are
+    ``(1, K)`` and every force is per unit length along ``y``: nodal forces, ``load``,
+    ``driving_force`` and the rolling resistances in N/m, ``driving_torque`` in N m/m,
+    ``contact_area`` in m (the contact length); pressures and tractions stay in Pa,
+    ``friction_power`` is in W/m; ``force_y``, ``displacement_y`` and ``slip_y`` vanish
+    (the antiplane problem is unloaded: zero to rounding).
+
     Attributes
     ----------
-    grid : Grid
+    grid : Grid or LineGrid
     force : ndarray
         Compressive nodal normal forces ``N`` (N).
     force_x, force_y : ndarray
@@ -286,10 +294,27 @@ class FrictionalContact(ContactFigures):
         """``sum S . w`` over the contact (W), eq. 2 times ``V``."""
         return float((self.force_x * self.slip_x + self.force_y * self.slip_y).sum())
 
+    @property
+    def contact_radius(self) -> float:
+        """In 3D the equivalent radius ``sqrt(area / pi)`` (m); in plane strain the
+        half-width ``(x_l - x_t) / 2`` (m) between the contact's edges
+        (:func:`bem.plane.contact_edges`), as :attr:`bem.plane.LineContact.contact_radius`."""
+        if not self.plane_strain:
+            return super().contact_radius
+        trailing, leading = edges_along(self.grid.x, self.grid.spacing, self.force[0], self.gap[0])
+        return 0.5 * (leading - trailing)
+
+    @property
+    def plane_strain(self) -> bool:
+        """Whether this is a line contact per unit length (a grid of one row,
+        :class:`bem.plane.LineGrid`): forces then in N/m, torques in N m/m."""
+        return isinstance(self.grid, LineGrid)
+
     def summary(self) -> dict:
         """The scalars (SI units), the grid and the solve record as a dict; the keys shared
         with :meth:`bem.contact.NormalContact.summary` name the same quantities (``nan``
-        where a figure was not computed)."""
+        where a figure was not computed); ``"model": "plane strain"`` for a line contact
+        (forces per unit length, N/m)."""
         r = self.record
         return {
             **{name: getattr(self, name) for name in SHARED_SCALARS},
@@ -304,6 +329,7 @@ class FrictionalContact(ContactFigures):
             "mode": self.mode,
             "kinematics": self.kinematics,
             "speed": self.speed,
+            **({"model": "plane strain"} if self.plane_strain else {}),
             "grid": grid_summary(self.grid),
             "solver": {"iterations": r.iterations, "residual": r.residual, "history": [list(h) for h in r.history],
                        "gap_residual": r.gap_residual, "stick_residual": r.stick_residual,

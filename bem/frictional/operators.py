@@ -11,6 +11,7 @@ import scipy.fft as sfft
 from ..grid import Grid
 from ..kinematics import upwind_table
 from ..operator import ComplianceOperator, fft_workers
+from ..plane import LineGrid
 from .options import SolverOptions
 
 __all__ = ["RollingOperators", "DIFFERENCED", "FIELDS"]
@@ -30,7 +31,9 @@ class RollingOperators:
 
     Parameters
     ----------
-    grid : Grid
+    grid : Grid or LineGrid
+        A :class:`bem.plane.LineGrid` (plane strain, one row) takes the tables of
+        :func:`bem.plane.line_kernels` (per unit length, m/(N/m)).
     kernels : dict
         The nine blocks of :func:`bem.spectral.influence_kernels` for ``grid`` (m/N).
     tables : dict, optional
@@ -228,7 +231,9 @@ class RollingOperators:
             return self
         if shape not in self._windows:
             cut = (slice(Ky - By, Ky + By - 1), slice(Kx - Bx, Kx + Bx - 1))
-            self._windows[shape] = RollingOperators(replace(self.grid, nodes_x=Bx, nodes_y=By),
+            box = replace(self.grid, nodes=Bx) if isinstance(self.grid, LineGrid) else \
+                replace(self.grid, nodes_x=Bx, nodes_y=By)
+            self._windows[shape] = RollingOperators(box,
                                                     {b: k[cut] for b, k in self.kernels.items()},
                                                     {b: t[cut] for b, t in self.tables.items()})
         return self._windows[shape]

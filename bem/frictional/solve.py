@@ -12,10 +12,12 @@ from typing import Callable
 import numpy as np
 
 from ..contact import ContactError, NormalContact, coarse_grid, coarse_solution, solve_normal
-from ..energy import viscous_dissipation
+from ..driver import line_tables
+from ..energy import layer_power
 from .model import Friction, FrictionalContact, FrictionNotConverged, FrictionRecord, LoadingUnreachable
 from ..kinematics import indenter_radius, rolling_geometry
 from ..operator import one_worker
+from ..plane import LINE_DENSE_LIMIT, LineGrid, line_dissipation
 from ..problem import Problem, compute_kernels
 from ..spectral import BLOCKS
 from .active_set import ActiveSetResult, LinearSolves, run_active_set
@@ -41,7 +43,9 @@ def solve_friction(problem: Problem, friction: Friction, progress: Callable[[str
     reuse them. With ``energy`` the result carries ``rolling_resistance_energy``
     ``= (P_visc + P_fric) / V`` (N), the layer's dissipation summed in Fourier space
     (:func:`bem.energy.viscous_dissipation`, about 1.8 s at ``N_t = 2000``); otherwise it
-    is ``nan``.
+    is ``nan``. A plane-strain problem (a :class:`bem.plane.LineGrid`) takes the line
+    kernels (:func:`bem.plane.line_kernels`) and :func:`bem.plane.line_dissipation`: every
+    force per unit length (N/m, the energy figure too).
 
     Raises
     ------
@@ -53,9 +57,10 @@ def solve_friction(problem: Problem, friction: Friction, progress: Callable[[str
     p = problem
     kernel_s = 0.0
     if kernels is None:
-        kernels, kernel_s = compute_kernels(p, BLOCKS, progress)
+        kernels, kernel_s = (line_tables(p, BLOCKS, progress) if p.plane_strain
+                              else compute_kernels(p, BLOCKS, progress, power=energy))
     t1 = time.perf_counter()
-    ops = RollingOperators(p.grid, kernels)
+    ops = RollingOperators(p.grid, {b: kernels[b] for b in BLOCKS})
     X, Y = p.grid.coordinates()
     R = indenter_radius(p.indenter, friction.radius)
     profile, arm, ell = rolling_geometry(p.indenter, X, Y, friction.kinematics, friction.radius)
@@ -65,12 +70,15 @@ def solve_friction(problem: Problem, friction: Friction, progress: Callable[[str
     t2 = time.perf_counter()
     timings = {"kernel_s": kernel_s, "solve_s": t2 - t1}
     if energy:
-        p_visc = viscous_dissipation(p.grid, p.layer, p.loading.speed, -res.force, res.force_x, res.force_y)
+        if p.plane_strain:
+            p_visc = line_dissipation(p.grid, p.layer, p.loading.speed, res.force, res.force_x)
+        else:
+            p_visc = layer_power(p.grid, p.layer, p.loading.speed, kernels, -res.force, res.force_x, res.force_y)
         res = replace(res, rolling_resistance_energy=(p_visc + res.friction_power) / p.loading.speed)
         timings["energy_s"] = time.perf_counter() - t2
         if progress:
-            progress(f"energy: (P_visc + P_fric) / V = {res.rolling_resistance_energy:.6g} N, "
-                     f"{timings['energy_s']:.2f} s")
+            progress(f"energy: (P_visc + P_fric) / V = {res.rolling_resistance_energy:.6g} "
+                     f"{'N/m' if p.plane_strain else 'N'}, {timings['energy_s']:.2f} s")
     return res, timings
 
 
@@ -115,6 +123,11 @@ def solve_rolling(ops: RollingOperators, profile, arm, ell, radius: float, speed
     o = SolverOptions() if options is None else options
     g = ops.grid
     size = g.nodes_x * g.nodes_y
+    if isinstance(g, LineGrid):
+        # plane strain: a line's systems are short, dense LU up to LINE_DENSE_LIMIT contact
+        # nodes whatever friction.dense_limit says; above, GMRES with the row preconditioner
+        # (the whole contact is one run of its row)
+        friction = replace(friction, dense_limit=max(friction.dense_limit, 3 * LINE_DENSE_LIMIT + 2))
     arm, ell = np.asarray(arm, float).ravel(), np.asarray(ell, float).ravel()
     profile = np.asarray(profile, float)
     cons = constraint(friction.mode, arm, ell, radius)

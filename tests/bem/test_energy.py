@@ -33,3 +33,33 @@ def test_normal_forces_take_the_fast_path_to_the_same_power(thickness, density, 
     general = viscous_dissipation(GRID, layer, speed, Fz, tiny, zero)
     assert fast > 0
     assert fast == pytest.approx(general, rel=1e-12)
+
+
+@pytest.mark.parametrize("density, matmul_nodes", [
+    (0.0, 128),     # no inertia: half-space modes split off, n- and m-sums by matrix products
+    (1000.0, 128),  # inertia: every mode's symbol streamed
+    (0.0, 4),       # the same two by chirp-z transforms (grids above matmul_nodes a side)
+    (1000.0, 4),
+])
+def test_power_tables_give_the_mode_sum_dissipation(monkeypatch, density, matmul_nodes):
+    """The power tables (one more transform of the kernels' symbols) and FFTs of the forces
+    give the mode sum of viscous_dissipation: the same truncated sum regrouped, so equal to
+    rounding. Measured: 6e-15 relative at most; tolerance 1e-12. The kernels computed
+    alongside are those of influence_kernels, bit for bit."""
+    from bem import spectral
+    from bem.energy import dissipation_from_tables
+    monkeypatch.setattr(spectral, "_MATMUL_NODES", matmul_nodes)
+    rng = np.random.default_rng(11)
+    layer = Layer(5e-3, ThreeParameterSolid(3e6, 0.25, 1.0), density)
+    blocks = tuple(spectral.BLOCKS)
+    kernels, tables = spectral.kernels_with_power(GRID, layer, 0.05, blocks)
+    alone = spectral.influence_kernels(GRID, layer, 0.05, blocks)
+    assert all(np.array_equal(kernels[b], alone[b]) for b in blocks)
+    F = [rng.standard_normal(GRID.shape) for _ in range(3)]
+    zero = np.zeros(GRID.shape)
+    for forces in (F, [F[0], zero, zero], [zero, F[1], zero]):
+        exact = viscous_dissipation(GRID, layer, 0.05, *forces)
+        assert exact != 0
+        assert dissipation_from_tables(tables, 0.05, *forces) == pytest.approx(exact, rel=1e-12)
+    with pytest.raises(ValueError, match="power table wu"):
+        dissipation_from_tables({"ww": tables["ww"]}, 0.05, *F)

@@ -19,8 +19,9 @@ import pytest
 
 from bem import Elastic, Grid, Layer, Loading, Problem, Sphere, ThreeParameterSolid, solve
 from bem.indenters import LineCylinder
-from bem.plane import LineContact, LineGrid, line_kernel, line_kernel_direct
-from bem.spectral import influence_kernels
+from bem.energy import viscous_dissipation
+from bem.plane import LineContact, LineGrid, line_dissipation, line_kernel, line_kernel_direct, line_kernels
+from bem.spectral import BLOCKS, influence_kernels
 from verification.analytic import hertz_line_contact, hunter_rolling_contact
 
 REPO = Path(__file__).resolve().parents[2]
@@ -52,14 +53,42 @@ def test_chirp_kernel_equals_direct_sum(material, speed, density):
 def test_line_kernel_is_the_3d_kernel_summed_over_a_uniform_strip():
     """A row of 3D patches filling one period along y (L_y = K_y a_y) carries a uniform
     line load F / a_y: the 3D kernel summed over one period of y offsets is the line kernel
-    over a_y (only n = 0 survives the sum; the n = +/-K_y modes vanish with sinc)."""
+    over a_y (only n = 0 survives the sum; the n = +/-K_y modes vanish with sinc). For
+    every block (the frictional solver's line kernels): the ones coupling v to w, u vanish
+    in plane strain (0 exactly in the line tables), vv is the antiplane compliance."""
     layer = Layer(3e-3, ThreeParameterSolid(1e6, 0.1, 2.0), 1000.0)
     ax, ay, Lx, Ky, Kx = 2e-4, 5e-4, 0.04, 12, 15
     g3 = Grid(ax, ay, Lx, Ky * ay, 120, Ky // 2, Kx, Ky)
-    k3 = influence_kernels(g3, layer, 0.2)["ww"]
-    strip = k3[:Ky].sum(axis=0)  # dy = -(K_y - 1) .. 0
-    line = line_kernel(LineGrid(ax, Lx, 120, Kx), layer, 0.2)[0] / ay
-    assert np.abs(strip - line).max() < 1e-10 * np.abs(line).max()  # measured 3e-16
+    k3 = influence_kernels(g3, layer, 0.2, blocks=BLOCKS)
+    lines = line_kernels(LineGrid(ax, Lx, 120, Kx), layer, 0.2)
+    scale = np.abs(lines["ww"]).max()
+    assert np.array_equal(lines["ww"], line_kernel(LineGrid(ax, Lx, 120, Kx), layer, 0.2))
+    for block in BLOCKS:
+        strip = k3[block][:Ky].sum(axis=0)  # dy = -(K_y - 1) .. 0
+        line = lines[block][0] / ay
+        assert np.abs(strip - line).max() < 1e-10 * scale, block  # measured <= 2.4e-12 (vv)
+        if block in ("wv", "vw", "uv", "vu"):
+            assert not line.any(), block
+    for block in ("wu", "uu", "vv"):
+        assert np.abs(line_kernel_direct(LineGrid(ax, Lx, 120, Kx), layer, 0.2, block) - lines[block]).max() \
+            < 1e-12 * scale, block
+
+
+def test_line_dissipation_is_the_3d_dissipation_of_a_uniform_strip():
+    """Line loads N', S' (N/m) on every row of a 3D grid filling one period along y are the
+    nodal forces N' a_y, S' a_y: the 3D dissipation (W) over L_y is the line's (W/m), with
+    the normal-tangential coupling of the layer (measured 1e-16 relative)."""
+    layer = Layer(3e-3, ThreeParameterSolid(1e6, 0.1, 2.0), 1000.0)
+    ax, ay, Lx, Ky, Kx = 2e-4, 5e-4, 0.04, 12, 15
+    g3 = Grid(ax, ay, Lx, Ky * ay, 120, Ky // 2, Kx, Ky)
+    x = LineGrid(ax, Lx, 120, Kx).x
+    N = np.maximum(1 - (x / 1.2e-3) ** 2, 0.0) * 50.0  # N/m per node
+    S = 0.3 * N * np.sign(x + 3e-4)
+    line = line_dissipation(LineGrid(ax, Lx, 120, Kx), layer, 0.2, N, S)
+    strip = viscous_dissipation(g3, layer, 0.2, -np.tile(N * ay, (Ky, 1)), np.tile(S * ay, (Ky, 1)),
+                                np.zeros((Ky, Kx))) / (Ky * ay)
+    assert line > 0 and line == pytest.approx(strip, rel=1e-12)
+    assert line != pytest.approx(line_dissipation(LineGrid(ax, Lx, 120, Kx), layer, 0.2, N), rel=1e-3)
 
 
 # --- 2D Hertz ----------------------------------------------------------------------------
@@ -200,7 +229,6 @@ def test_cli_solves_the_example_and_reports_the_edges(tmp_path, capsys, monkeypa
 @pytest.mark.parametrize("override, message", [
     ("grid.spacing_y=1e-4", "[grid] spacing_y: a line case"),
     ("grid.half_width_y=1e-3", "[grid] half_width_y: a line case"),
-    ("friction.mu=0.3", "[friction] is not available for a line case"),
 ])
 def test_cli_rejects_3d_settings_for_a_line_case(override, message, capsys, monkeypatch):
     from bem.cli import main

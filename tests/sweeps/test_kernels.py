@@ -39,6 +39,15 @@ def load_sweep(tmp_path: Path, case: str, loads: int = 10) -> Path:
     return path
 
 
+
+def _count_kernel_sets(monkeypatch) -> list:
+    """The ``blocks`` of every kernel set formed from now on (with or without power tables)."""
+    calls = []
+    for name in ("influence_kernels", "kernels_with_power"):
+        real = getattr(bem.problem, name)
+        monkeypatch.setattr(bem.problem, name, lambda *a, _real=real, **k: calls.append(k.get("blocks")) or _real(*a, **k))
+    return calls
+
 def test_a_wider_regions_tables_serve_a_narrower_one(tmp_path):
     points = expand(read_sweep(load_sweep(tmp_path, f'"{FRICTION}"', 2)))
     small, _ = problem_from_config(points[0].config)
@@ -68,14 +77,7 @@ def test_kernel_key_holds_what_the_compliance_depends_on(tmp_path):
 def test_a_ten_load_sweep_forms_one_kernel(tmp_path, client, monkeypatch):
     """Counted where kernels are formed (bem.problem.influence_kernels, in this process's
     threaded workers), not taken from the sweep's own report."""
-    calls = []
-    real = bem.problem.influence_kernels
-
-    def counting(*args, **kwargs):
-        calls.append(kwargs.get("blocks"))
-        return real(*args, **kwargs)
-
-    monkeypatch.setattr(bem.problem, "influence_kernels", counting)
+    calls = _count_kernel_sets(monkeypatch)
     sweep = read_sweep(load_sweep(tmp_path, f'"{BASE}"'))
     report = run_sweep(sweep, tmp_path / "out", client=client, cache=tmp_path / "cache", stream=None)
     assert report.computed == 10 and report.failed == 0
@@ -103,10 +105,7 @@ def test_a_ten_load_sweep_forms_one_kernel(tmp_path, client, monkeypatch):
 
 
 def test_friction_and_frictionless_points_share_nine_blocks(tmp_path, client, monkeypatch):
-    calls = []
-    real = bem.problem.influence_kernels
-    monkeypatch.setattr(bem.problem, "influence_kernels",
-                        lambda *a, **k: calls.append(k.get("blocks")) or real(*a, **k))
+    calls = _count_kernel_sets(monkeypatch)
     sweep = read_sweep(load_sweep(tmp_path, f'["{BASE}", "{FRICTION}"]', 2))
     report = run_sweep(sweep, tmp_path / "out", client=client, cache=None, stream=None)
     assert report.failed == 0 and report.computed == 4

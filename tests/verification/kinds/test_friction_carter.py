@@ -16,7 +16,8 @@ CASE = Path(__file__).resolve().parents[3] / "verification" / "cases" / "frictio
 def test_case_passes_its_gates_over_the_creepages():
     result = run_case(load_case(CASE), progress=lambda m: None)
     assert "error" not in result.extra
-    assert {g.quantity for g in result.gates} == {"creep_force", "stick_edge", "traction_rms"}
+    assert {g.quantity for g in result.gates} == {"creep_force", "stick_edge", "traction_rms", "plane_creep_force",
+                                                  "plane_stick_edge", "plane_traction_rms"}
     assert all(g.passed for g in result.gates), [(g.quantity, g.error) for g in result.gates]
     rows = result.extra["carter"]
     assert rows[0]["frac"] == 1e-3 and rows[-1]["frac"] == 1.5
@@ -37,4 +38,8 @@ def test_bad_cases_are_refused():
     bad = copy.deepcopy(case)
     bad["problem"]["material"] = {"model": "three_parameter", "G0": 3e6, "tau": 0.25, "f": 1.0}
     with pytest.raises(CaseError, match="material model = \"elastic\""):
+        kind.check(bad, "case.toml", {})
+    bad = copy.deepcopy(case)
+    del bad["carter"]["plane_depth"]
+    with pytest.raises(CaseError, match="plane_spacing_x: plane_spacing_x and plane_depth go together"):
         kind.check(bad, "case.toml", {})

@@ -1,0 +1,41 @@
+"""The BEM runs its BLAS on one thread unless the user set a thread count
+(:mod:`bem.threads`), observed from inside a solve through its progress callback."""
+
+import pytest
+from threadpoolctl import threadpool_info, threadpool_limits
+
+from bem import Elastic, Grid, Layer, Loading, Paraboloid, Problem, solve
+from bem.threads import THREAD_VARIABLES
+
+
+def _blas_threads() -> set[int]:
+    return {lib["num_threads"] for lib in threadpool_info() if lib["user_api"] == "blas"}
+
+
+def _threads_during_solve() -> set[int]:
+    seen: set[int] = set()
+    grid = Grid.centred((0.5e-3, 0.5e-3), (0.05, 0.05), (100, 100), (3e-3, 3e-3))
+    problem = Problem(Layer(0.01, Elastic(3e6), 0.0), Paraboloid(0.02), grid, Loading(0.0, load=20.0))
+    solve(problem, progress=lambda line: seen.update(_blas_threads()))
+    return seen
+
+
+@pytest.fixture
+def two_blas_threads(monkeypatch):
+    for name in THREAD_VARIABLES:
+        monkeypatch.delenv(name, raising=False)
+    if not _blas_threads():
+        pytest.skip("no BLAS library that threadpoolctl can see")
+    with threadpool_limits(limits=2, user_api="blas"):
+        yield
+
+
+def test_a_solve_runs_its_blas_on_one_thread_and_restores_the_count(two_blas_threads):
+    assert _threads_during_solve() == {1}
+    assert _blas_threads() == {2}
+
+
+@pytest.mark.parametrize("variable", THREAD_VARIABLES)
+def test_a_thread_count_the_user_set_is_kept(two_blas_threads, monkeypatch, variable):
+    monkeypatch.setenv(variable, "2")
+    assert _threads_during_solve() == {2}
