@@ -82,7 +82,7 @@ def test_energy_figure_and_progress_lines(kernels):
     # the two figures differ by the discretisation error: 6.2 % measured on 67 contact nodes
     assert abs(res.rolling_resistance_energy / res.rolling_resistance - 1) < 0.1
     assert set(timings) == {"kernel_s", "solve_s", "energy_s"} and min(timings.values()) > 0
-    assert lines[0] == (f"compliance ({len(BLOCKS)} block(s)): 23 x 23 nodes, Nt = 100 x 100, "
+    assert lines[0] == (f"compliance ({len(BLOCKS)} block(s) and their power tables): 23 x 23 nodes, Nt = 100 x 100, "
                         f"{timings['kernel_s']:.2f} s")
     assert lines[-1] == (f"energy: (P_visc + P_fric) / V = {res.rolling_resistance_energy:.6g} N, "
                          f"{timings['energy_s']:.2f} s")
