@@ -15,12 +15,14 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Callable
 
-from . import friction_carter, paper_sweeps, roller_3d, rolling_2d, rolling_3d, rolling_limits, stationary, sweep, table1
+from . import (friction_carter, friction_layer, paper_sweeps, roller_3d, rolling_2d, rolling_3d, rolling_limits,
+               stationary, sweep, table1)
 
 __all__ = ["KINDS", "Context"]
 
 KINDS = {
     "friction-carter": friction_carter,
+    "friction-layer": friction_layer,
     "stationary": stationary,
     "sweep": sweep,
     "table1": table1,
@@ -34,9 +36,11 @@ KINDS = {
 
 @dataclass
 class Context:
-    """What a kind's ``run`` gets besides the case: progress lines, the quick flag and the
-    methods by name."""
+    """What a kind's ``run`` gets besides the case: progress lines, the quick flag, the
+    methods by name, and the Dask client a kind that runs on Dask itself (``USES_DASK``)
+    submits to (``None``: it starts its own local cluster)."""
 
     progress: Callable[[str], None] = print
     quick: bool = False
     methods: dict = field(default_factory=dict)
+    client: object = None
