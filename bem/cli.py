@@ -163,9 +163,11 @@ def main(argv: list[str] | None = None) -> int:
     s.add_argument("--fields", type=Path, metavar="FILE.npz",
                    help="save nodal coordinates and fields (NPZ); default: not saved")
     s.add_argument("--quiet", action="store_true", help="no progress lines on stderr")
-    s.add_argument("--error-estimate", action="store_true",
+    s.add_argument("--error-estimate", action=argparse.BooleanOptionalAction, default=None,
                    help="with friction: solve again on the grid coarsened by 2 and 4 and give each frictional "
-                        "figure's Richardson limit and grid error (about twice the cost); default: off")
+                        "figure's Richardson limit and grid error (the frictional figures converge at first "
+                        "order: one grid's value is no better than its error; about twice the cost); "
+                        "default: on with [friction], --no-error-estimate to skip it")
     sub.add_parser("dma", add_help=False, help="DMA CSV to master curve, Prony fit and figures "
                    "(bem dma --help; docs/materials.md)")
     argv = sys.argv[1:] if argv is None else list(argv)
@@ -206,6 +208,8 @@ def _run(args, signals: _Signals) -> int:
             raise ValueError(f"--plot {args.plot}: the frictional maps are drawn for a 3D contact only; for a "
                              "line case ([indenter] shape = \"line\" with [friction]) write --fields FILE.npz "
                              "and plot its x, pressure and force_x (N/m per node) arrays")
+        if args.error_estimate is None:
+            args.error_estimate = friction is not None
         if args.error_estimate and friction is None:
             raise ValueError("--error-estimate estimates the grid error of the frictional figures: "
                              "the case needs a [friction] section")
@@ -215,26 +219,41 @@ def _run(args, signals: _Signals) -> int:
     estimate = None
     try:
         result = solve(problem, friction, progress=progress, grow=auto and friction is None)
-        if args.error_estimate:
-            from .frictional.grid_error import estimate_grid_error
-
-            estimate = estimate_grid_error(problem, friction, fine=result, progress=progress)
     except ValueError as exc:
         print(f"bem: error: {exc}", file=sys.stderr)
         return 2
     except ContactError as exc:
         print(f"bem: error: {type(exc).__name__}: {exc}", file=sys.stderr)
         return 1
+    if args.error_estimate:
+        estimate = _grid_error(problem, friction, result, progress)
     summary = _strict({**result.summary(), "timings_s": result.record.times,
-                       **({"grid_error": estimate.summary()} if estimate else {})})
+                       **({"grid_error": estimate if isinstance(estimate, dict) else estimate.summary()}
+                          if estimate else {})})
     failed = _write_outputs(args, friction, result, summary)
     text = io.StringIO()
     with contextlib.redirect_stdout(text):
         _print_result(args, problem, friction, result, summary, LineContact)
         if estimate is not None and not args.json:
-            print("\n".join(estimate.lines()))
+            print("\n".join(estimate.lines()) if not isinstance(estimate, dict) else
+                  f"grid error: not estimated ({estimate['not_estimated']})")
     with signals.committing():
         return _commit(text.getvalue(), (args.fields, args.plot), failed, progress)
+
+
+def _grid_error(problem, friction, result, progress):
+    """The grid error of the frictional figures (:func:`bem.frictional.grid_error.
+    estimate_grid_error`), or ``{"not_estimated": why}`` when a coarse level cannot be
+    solved (its contact reaches the region's edge, say): the result stands without it."""
+    from .contact import ContactError
+    from .frictional.grid_error import estimate_grid_error
+
+    try:
+        return estimate_grid_error(problem, friction, fine=result, progress=progress)
+    except (ValueError, ContactError) as exc:
+        why = f"the grid coarsened by 2 and 4 could not be solved: {type(exc).__name__}: {exc}"
+        progress(f"grid error: not estimated: {why}")
+        return {"not_estimated": why}
 
 
 def _print_result(args, problem, friction, result, summary, LineContact) -> None:

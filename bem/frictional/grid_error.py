@@ -15,7 +15,8 @@ where ``p`` is outside ``[0.5, 5]`` the error is three times the last change).
 Cost: the two coarse levels (a quarter and a sixteenth of the nodes) add their kernels
 and solves, about as much again as the fine solve on the section 11 example (measured,
 on a loaded machine: 0.25 mm alone 6.5-10 s, with the 0.5 and 1 mm levels about twice
-that), so it is asked for, not always done.
+that). ``bem solve`` makes the estimate for every frictional case unless told not to
+(``--no-error-estimate``): no frictional figure is printed without its error.
 """
 
 from __future__ import annotations

@@ -54,3 +54,21 @@ def test_cli_friction_bad_input(capsys):
     assert "mu must be >= 0, got -0.1" in capsys.readouterr().err
     assert main(["solve", CASE, "--quiet", *CHEAP, "--set", "friction.mu=1e-3"]) == 1  # solved, unreachable
     assert "LoadingUnreachable" in capsys.readouterr().err
+
+
+def test_frictional_figures_come_with_their_grid_error_unless_declined(capsys):
+    """With [friction] the grid error is estimated by default (the frictional figures
+    converge at first order): three levels a = 2, 1, 0.5 mm; --no-error-estimate skips it;
+    a grid whose coarse levels cannot hold the contact still gives its result, exit 0,
+    and says why the estimate is missing."""
+    roomy = ["--set", "grid.spacing=0.5e-3", "--set", "grid.half_width=8e-3", "--set", "grid.truncation=400"]
+    assert main(["solve", CASE, "--json", "--quiet", *roomy]) == 0
+    estimate = json.loads(capsys.readouterr().out)["grid_error"]
+    assert estimate["spacings"] == pytest.approx([2e-3, 1e-3, 0.5e-3])
+    friction = estimate["figures"]["rolling_resistance_friction"]
+    assert len(friction["values"]) == 3 and friction["error"] > 0
+    assert main(["solve", CASE, "--json", "--quiet", "--no-error-estimate", *roomy]) == 0
+    assert "grid_error" not in json.loads(capsys.readouterr().out)
+    assert main(["solve", CASE, *CHEAP]) == 0  # 1 mm: the 4 mm level is 3 x 3 nodes
+    out = capsys.readouterr().out
+    assert "rolling resistance" in out and "grid error: not estimated" in out and "ContactAtEdge" in out
