@@ -18,9 +18,31 @@ discrete problem. Linear solves are dense LU on small sets and restarted GMRES w
 FFT operator otherwise (the flexible, right-preconditioned :func:`bem.linear.fgmres`,
 which minimises the true residual and orthogonalises by matrix products: 1.2-1.7x
 faster than SciPy's GMRES here, 55 -> 47 iterations at 61 x 61, 87 -> 70 at 257 x 257),
-preconditioned by the exact inverse of the operator's circulant embedding (two FFTs; it
-cuts the iterations about sevenfold), so memory stays ``O(N)``. A set that recurs (a cycle) switches
-to one-node updates; a cycle there raises :class:`ContactNotConverged`.
+preconditioned by the inverse of the kernel's wrapped circulant (two FFTs,
+:meth:`bem.operator.ComplianceOperator.circulant_inverse`), so memory stays ``O(N)``.
+Products and preconditioner act on the set's bounding box (:func:`_box`,
+:meth:`~bem.operator.ComplianceOperator.block`), not the whole grid: the transforms shrink
+with the contact (the benchmark's viscoelastic contact below: a 120 x 104 box of the
+155 x 155 grid, products on a 240 x 216 embedding instead of 320 x 320).
+
+Why the wrapped circulant. The inverse of the zero-padded embedding that applies ``C``
+has eigenvalues near zero and below it (the kernel cut off at the table's border; see
+:mod:`bem.operator`), worst for a viscoelastic kernel, whose long tail along the rolling
+direction makes the cut larger: on the standard linear solid's half-space
+(``benchmarks/bem_viscoelastic_rolling.py``, 155 x 155 nodes) the fine grid took 223
+GMRES iterations against 79 for the elastic layer on the same grid. The wrapped circulant
+(the kernel at its true values on a period of about ``2 K``; the compliance of the layer
+made periodic) takes 67 against 48, the preconditioned spectra of the converged sets alike (real parts
+0.96-2.85 viscoelastic, 1.00-2.56 elastic, 77 x 77). What remains is the contact's
+Schur complement: the whole grid's inverse restricted to the set does no better (14
+against 11 from zero on the converged 77 x 77 sets, the wrapped circulant 15 and 11);
+exact solves on the runs of each grid row with the row filter ``(C_row / C)`` after them
+(``bem.frictional.preconditioner``'s form) gave 12 and 11, but the runs' dense inverses
+cost 26 ms CPU a set at 155 x 155 (113 runs of up to 100 nodes), the price of 28 GMRES
+iterations (0.95 ms each, product and preconditioner), to save about three.
+
+A set that recurs (a cycle) switches to one-node updates; a cycle there raises
+:class:`ContactNotConverged`.
 """
 
 from __future__ import annotations
@@ -70,8 +92,9 @@ class NormalSystem:
     """The linear problem of one trial contact set ``idx`` (flat node indices): under
     load control the bordered system ``C_AA F_A - d 1 = -s_A``, ``diag sum F_A = diag P``
     (both rows in metres), under displacement control ``C_AA F_A = d - s_A``; for
-    :class:`bem.linear.LinearSolver` (dense matrix, FFT product, and the exact inverse of
-    the operator's circulant embedding on the force part as preconditioner)."""
+    :class:`bem.linear.LinearSolver` (dense matrix, FFT product and, on the force part,
+    the inverse of the kernel's wrapped circulant as preconditioner, both on the set's
+    bounding box ``box``)."""
 
     def __init__(self, op: ComplianceOperator, idx: np.ndarray, s_A: np.ndarray, load: float | None,
                  indentation: float | None):
@@ -81,9 +104,12 @@ class NormalSystem:
         self.n = self.m + self.bordered
         self.diag = float(op.kernel[op.grid.nodes_y - 1, op.grid.nodes_x - 1])
         self.b = np.concatenate([-s_A, [self.diag * load]]) if self.bordered else indentation - s_A
-        self._full = np.zeros(op.grid.nodes_x * op.grid.nodes_y)
+        # products and preconditioner on the set's bounding box (ComplianceOperator.block)
+        shape, self._local = _box(idx, op.grid.shape)
+        self.box = op.block(shape)
+        self._full = np.zeros(shape[0] * shape[1])
         self._pre = None
-        if not op.has_circulant_inverse:
+        if not self.box.has_circulant_inverse:
             self.precondition = None
 
     def dense(self) -> np.ndarray:
@@ -99,17 +125,17 @@ class NormalSystem:
 
     def _spread(self, v):
         self._full[:] = 0.0
-        self._full[self.idx] = v[:self.m]
-        return self._full.reshape(self.op.grid.shape)
+        self._full[self._local] = v[:self.m]
+        return self._full.reshape(self.box.grid.shape)
 
     def matvec(self, v):
-        out = self.op.apply(self._spread(v)).ravel()[self.idx]
+        out = self.box.apply(self._spread(v)).ravel()[self._local]
         if not self.bordered:
             return out
         return np.concatenate([out - v[self.m], [self.diag * v[:self.m].sum()]])
 
     def precondition(self, v):
-        """The inverse of the operator's circulant embedding on the forces; under load
+        """The inverse of the kernel's wrapped circulant on the forces; under load
         control ``d`` eliminated by its Schur complement (:func:`bem.linear.bordered`;
         passing its row on instead cost 9-20 % more GMRES iterations: section 11 at
         257 x 257 70 / 53 / 46 -> 64 / 45 / 36 on its 257, 129 and 65 levels)."""
@@ -128,11 +154,31 @@ class NormalSystem:
         return self._pre(v)
 
     def _forces(self, v):
-        return self.op.circulant_inverse(self._spread(v)).ravel()[self.idx]
+        return self.box.circulant_inverse(self._spread(v)).ravel()[self._local]
 
     def split(self, x: np.ndarray) -> tuple[np.ndarray, float]:
         """Forces on the set and the indentation from the solution vector."""
         return (x[:self.m], float(x[self.m])) if self.bordered else (x, self.indentation)
+
+
+#: a contact set's bounding box is widened to a multiple of this many nodes a side (within
+#: the grid), so that the boxes of successive sets share their operators (each new shape
+#: costs two transforms of the kernel). The 13 sets of the viscoelastic solve of
+#: ``benchmarks/bem_viscoelastic_rolling.py`` at 155 x 155 (both levels) ask 9 shapes at 1
+#: node, 5 at 8, 4 at 16; the solve's CPU time is the same within the noise (0.14 s)
+BOX_STEP = 8
+
+
+def _box(idx: np.ndarray, shape: tuple[int, int]) -> tuple[tuple[int, int], np.ndarray]:
+    """The block of the grid (``shape``) that holds the flat node indices ``idx``: its shape,
+    each side the set's extent rounded up to :data:`BOX_STEP` nodes (at most the grid's),
+    and ``idx`` as flat indices into it."""
+    Ky, Kx = shape
+    j, i = np.divmod(idx, Kx)
+    by = min(Ky, -(-(int(j.max()) - int(j.min()) + 1) // BOX_STEP) * BOX_STEP)
+    bx = min(Kx, -(-(int(i.max()) - int(i.min()) + 1) // BOX_STEP) * BOX_STEP)
+    j0, i0 = min(int(j.min()), Ky - by), min(int(i.min()), Kx - bx)
+    return (by, bx), (j - j0) * bx + (i - i0)
 
 
 #: contact sets up to this many nodes are solved by dense LU, larger ones by GMRES (FFT

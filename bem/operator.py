@@ -4,18 +4,41 @@ Entries depend on the node offset only, so the operator is block-Toeplitz with T
 blocks: it is applied by a circulant embedding of size about ``(2 K_y) x (2 K_x)`` at
 ``O(N log N)`` cost and ``O(N)`` memory, and assembled densely only on request (small
 grids, or a node subset).
+
+The contact solvers' preconditioner (:meth:`ComplianceOperator.circulant_inverse`) is the
+inverse of another circulant: the kernel wrapped onto a period of at most ``2 K - 2``
+nodes a side, every offset within half a period at its true value (the compliance of the
+layer made periodic with that period; :func:`periodic_size`). The zero-padded embedding,
+exact for the product, is a poor one to invert: its kernel drops to zero at the table's
+border, and on a thick layer, whose kernel is still large there, the jump puts
+eigenvalues near zero and below it into its spectrum (the thick elastic layer of
+``benchmarks/bem_viscoelastic_rolling.py`` at 77 x 77: real parts down to -3.7e-4 of the
+largest, six negative; four eigenvalues near -30 in the preconditioned contact system).
+A viscoelastic kernel keeps a long tail along the rolling direction (``V tau`` = 12.5 mm
+on that case), so its jump is larger: real parts down to -2.3e-3 of the largest, 23
+negative, and eigenvalues of the preconditioned system at 0.04 and 0.09. Wrapped, the
+kernel is not cut, and its spectrum keeps the positive real part of a passive layer's
+symbol (``G' > 0``; measured at least 1.5e-3 of the largest on that case's kernels at
+39 x 39). GMRES from zero to 1e-11 on that case's converged contact sets, zero-padded ->
+wrapped: elastic 16 -> 11 (77 x 77), 17 -> 13 (155 x 155); viscoelastic 38 -> 15,
+49 -> 16; the inverse of the whole grid's matrix restricted to the contact gives 11 and
+14 at 77 x 77, so the wrapped circulant is about as good as that ideal. On a thin layer
+(section 11's, ``H = 5 mm``, 21 x 21 nodes, elastic at rest and rolling) the kernel has
+decayed at the border and both spectra stay positive.
 """
 
 from __future__ import annotations
 
+import threading
 from contextlib import contextmanager
+from dataclasses import dataclass
 
 import numpy as np
 import scipy.fft as sfft
 
 from .grid import Grid
 
-__all__ = ["ComplianceOperator", "THREADED_FROM", "fft_workers", "one_worker"]
+__all__ = ["ComplianceOperator", "THREADED_FROM", "fft_workers", "one_worker", "periodic_size", "BLOCKS_KEPT", "Block"]
 
 #: FFTs of an embedding with this many points or more run on every core, smaller ones on
 #: one (a small transform costs less than handing it over). Measured, whole solves with the
@@ -25,6 +48,9 @@ __all__ = ["ComplianceOperator", "THREADED_FROM", "fft_workers", "one_worker"]
 #: 257 x 257 (514 x 514) 1.20; the frictional one (on the contact's box) 61 x 61 (108 x 108) 0.84, 121 x 121 0.93,
 #: 41 x 41 0.85, 129 x 129 (225 x 216) 0.99, 257 x 257 (450 x 405) 0.95 and 1.06
 THREADED_FROM = 100_000
+#: :meth:`ComplianceOperator.block` keeps the operators of this many block shapes
+BLOCKS_KEPT = 8
+_BLOCKS_LOCK = threading.Lock()
 
 
 _ONE_WORKER = 0  # depth of the one_worker() blocks open
@@ -34,6 +60,50 @@ def fft_workers(shape: tuple[int, int]) -> int:
     """Threads for the transforms of an embedding of ``shape``: ``-1`` (every core) from
     :data:`THREADED_FROM` points on, 1 below, and 1 inside :func:`one_worker`."""
     return -1 if shape[0] * shape[1] >= THREADED_FROM and not _ONE_WORKER else 1
+
+
+def periodic_size(nodes: int) -> int:
+    """Period (nodes) of the wrapped circulant that :meth:`ComplianceOperator.circulant_inverse`
+    inverts on a grid of ``nodes`` a side: the largest transform-friendly length (factors
+    2, 3, 5) up to ``2 nodes - 2``, the longest period whose every offset within half a
+    period is in the kernel table, and never less than ``nodes`` (a power of two lies in
+    ``[nodes, 2 nodes - 2]``); 1 for a single node (a line contact's one row)."""
+    if nodes < 2:
+        return 1
+    n = 2 * nodes - 2
+    while sfft.next_fast_len(n, real=True) != n:
+        n -= 1
+    return n
+
+
+def _wrapped(table: np.ndarray, axis: int, period: int) -> np.ndarray:
+    """The kernel ``table`` (offsets ``-(K-1) .. K-1`` along ``axis``) wrapped onto
+    ``period`` (at most ``2 K - 2``): offset ``d`` at index ``d mod period`` for ``|d| <=
+    period / 2``, the two ends of an even period averaged (they share an index)."""
+    centre = (table.shape[axis] - 1) // 2
+    d = np.arange(period)
+    d = np.where(d > period // 2, d - period, d)
+    out = table.take(centre + d, axis=axis)
+    if period % 2 == 0 and period > 1:
+        half = [slice(None)] * table.ndim
+        half[axis] = period // 2
+        ends = table.take(centre + period // 2, axis=axis) + table.take(centre - period // 2, axis=axis)
+        out[tuple(half)] = 0.5 * ends
+    return out
+
+
+@dataclass(frozen=True)
+class Block:
+    """The nodes of a block of a grid, for the operator of :meth:`ComplianceOperator.block`:
+    ``nodes_x`` columns and ``nodes_y`` rows (positions do not enter the operator)."""
+
+    nodes_x: int
+    nodes_y: int
+
+    @property
+    def shape(self) -> tuple[int, int]:
+        """Field shape ``(nodes_y, nodes_x)``."""
+        return (self.nodes_y, self.nodes_x)
 
 
 @contextmanager
@@ -57,6 +127,8 @@ class ComplianceOperator:
     Parameters
     ----------
     grid : Grid
+        Or anything with its ``shape`` ``(K_y, K_x)`` and ``nodes_x``, ``nodes_y``
+        (:class:`bem.plane.LineGrid`, :class:`Block`).
     kernel : ndarray, shape ``(2 K_y - 1, 2 K_x - 1)``
         Kernel table from :func:`bem.spectral.influence_kernels` (m/N).
     """
@@ -113,27 +185,67 @@ class ComplianceOperator:
 
     @property
     def has_circulant_inverse(self) -> bool:
-        """Whether the circulant embedding is safely invertible (its smallest eigenvalue
-        modulus above 1e-12 of the largest); computes and keeps the inverse spectrum."""
+        """Whether the wrapped circulant of :meth:`circulant_inverse` is safely invertible
+        (its smallest eigenvalue modulus above 1e-12 of the largest); computes and keeps
+        its inverse spectrum."""
         if not hasattr(self, "_inv_hat"):
-            mag = np.abs(self._hat)
-            self._inv_hat = 1.0 / self._hat if mag.min() > 1e-12 * mag.max() else None
+            Ky, Kx = self.grid.shape
+            self._period = (periodic_size(Ky), periodic_size(Kx))
+            wrapped = _wrapped(_wrapped(self.kernel, 0, self._period[0]), 1, self._period[1])
+            self._periodic_hat = sfft.rfft2(wrapped, workers=fft_workers(self._period))
+            mag = np.abs(self._periodic_hat)
+            self._inv_hat = 1.0 / self._periodic_hat if mag.min() > 1e-12 * mag.max() else None
         return self._inv_hat is not None
 
-    def circulant_inverse(self, values: np.ndarray) -> np.ndarray:
-        """Exact inverse of the circulant embedding of ``C`` applied to ``values``
-        (shape ``(K_y, K_x)``, zero-padded to the embedding), read back on the grid.
+    @property
+    def periodic_spectrum(self) -> np.ndarray:
+        """Eigenvalues (m/N) of the wrapped circulant that :meth:`circulant_inverse` inverts
+        (its kernel's ``rfft2``, period :func:`periodic_size` a side), read-only."""
+        self.has_circulant_inverse
+        out = self._periodic_hat.view()
+        out.flags.writeable = False
+        return out
 
-        An approximate inverse of ``C`` restricted to a node set, cheap (two FFTs) and
-        spectrally close to it: a preconditioner for Krylov solves on contact sets. Raises
-        ``ZeroDivisionError`` if the embedding is (nearly) singular.
+    def circulant_inverse(self, values: np.ndarray) -> np.ndarray:
+        """The inverse of the kernel's wrapped circulant (period :func:`periodic_size` a
+        side, at least the grid's; see the module docstring) applied to ``values``
+        (deflections, m, shape ``(K_y, K_x)``, zero-padded to the period), read back on the
+        grid (forces, N).
+
+        An approximate inverse of ``C`` restricted to a node set, cheap (two FFTs of the
+        period) and spectrally close to it: a preconditioner for Krylov solves on contact
+        sets. Raises ``ZeroDivisionError`` if the circulant is (nearly) singular.
         """
         if not self.has_circulant_inverse:
-            raise ZeroDivisionError("the circulant embedding of the compliance is nearly singular")
+            raise ZeroDivisionError("the wrapped circulant of the compliance is nearly singular")
         Ky, Kx = self.grid.shape
         f = np.asarray(values, dtype=float).reshape(Ky, Kx)
-        out = sfft.irfft2(sfft.rfft2(f, s=self._size, workers=self._workers) * self._inv_hat, s=self._size, workers=self._workers)
+        workers = fft_workers(self._period)
+        out = sfft.irfft2(sfft.rfft2(f, s=self._period, workers=workers) * self._inv_hat, s=self._period,
+                          workers=workers)
         return out[:Ky, :Kx]
+
+    def block(self, shape: tuple[int, int]) -> "ComplianceOperator":
+        """The operator between the nodes of a block of ``shape`` = ``(rows, columns)`` nodes
+        anywhere on the grid (entries depend on the node offset only: its kernel is the
+        middle of this one's), for products and preconditioners on a contact set's bounding
+        box; this operator itself for the whole grid. It is of this operator's class, its
+        ``grid`` a :class:`Block`. The last :data:`BLOCKS_KEPT` shapes asked for are kept."""
+        Ky, Kx = self.grid.shape
+        by, bx = shape
+        if not (1 <= by <= Ky and 1 <= bx <= Kx):
+            raise ValueError(f"a block of {shape} nodes does not fit in the grid's {self.grid.shape}")
+        if (by, bx) == (Ky, Kx):
+            return self
+        with _BLOCKS_LOCK:  # solves on two threads may share an operator
+            kept = self.__dict__.setdefault("_blocks", {})
+            op = kept.pop((by, bx), None)
+            if op is None:
+                op = type(self)(Block(bx, by), self.kernel[Ky - by:Ky + by - 1, Kx - bx:Kx + bx - 1])
+            kept[(by, bx)] = op  # the last asked for at the end
+            while len(kept) > BLOCKS_KEPT:
+                kept.pop(next(iter(kept)))
+        return op
 
     def dense(self, nodes: np.ndarray | None = None) -> np.ndarray:
         """Dense matrix ``C[M, N]`` (m/N) on the flat node indices ``nodes`` (all if None)."""
