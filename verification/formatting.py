@@ -39,9 +39,15 @@ def unit(quantity: str, kind: str = "") -> tuple[str, float]:
     Lengths (m) in mm, pressures (Pa) in MPa, forces in N (N/m for the plane-strain kind
     ``rolling-2d``, whose loads and rolling resistances are per unit length); the
     pressure metrics of the stationary kinds are differences in units of the reference's
-    peak pressure (``of peak``); ``-`` for a dimensionless number.
+    peak pressure (``of peak``); ``-`` for a dimensionless number. A kind may name its own
+    quantities' units in a module-level ``UNITS`` (quantity -> (unit, factor)).
     """
     q = plain_quantity(quantity)
+    from .kinds import KINDS  # the kinds import this module: looked up at call time
+
+    own = getattr(KINDS.get(kind), "UNITS", {})  # a kind's own quantities, in its Runs tables' units
+    if q in own:
+        return own[q]
     if q in LENGTHS:
         return "mm", 1e3
     if kind == "rolling-2d" and q == "pressure_rms_interior":  # the kind compares the two peaks' run

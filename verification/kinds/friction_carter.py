@@ -48,6 +48,10 @@ ADDS_METHODS = False
 SECTIONS = ("carter",)
 QUANTITIES = ("creep_force", "stick_edge", "traction_rms", "plane_creep_force", "plane_stick_edge",
               "plane_traction_rms")
+#: the gates' value and reference as the Runs tables show them: forces per unit length,
+#: the stick zone's trailing end in mm, the traction RMS in units of mu p0
+UNITS = {q: u for base, u in (("creep_force", ("N/m", 1.0)), ("stick_edge", ("mm", 1e3)),
+                              ("traction_rms", ("of mu p0", 1.0))) for q in (base, f"plane_{base}")}
 CARTER = {
     "mu": Field("number", True, positive=True, doc="Coulomb coefficient (-)"),
     "spacing_x": Field("number", True, positive=True, doc="node spacing along the rolling direction (m)"),

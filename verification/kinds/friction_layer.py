@@ -38,6 +38,11 @@ ADDS_METHODS = False
 SECTIONS = ("friction_layer",)
 COMPARED = ("rolling_resistance", "rolling_resistance_friction", "driving_force", "creepage", "stick_edge")
 QUANTITIES = (*COMPARED, "energy_balance")
+#: the gates' value and reference in the Runs tables' units: per unit length (N/m), the
+#: stick zone's trailing end in mm
+UNITS = {"rolling_resistance": ("N/m", 1.0), "rolling_resistance_friction": ("N/m", 1.0),
+         "driving_force": ("N/m", 1.0), "creepage": ("-", 1.0), "stick_edge": ("mm", 1e3),
+         "energy_balance": ("N/m", 1.0)}
 LOADINGS = ("pushed_at_top", "towed", "omega")
 SECTION = {
     "mu": Field("number", True, positive=True, doc="Coulomb coefficient (-)"),
@@ -139,6 +144,7 @@ def _bem_runs(cfg: dict, s: dict, H: float, ctx) -> list[dict]:
                          f"R_r^F' {res.rolling_resistance_friction:.5f} N/m, Q' {res.driving_force:.5f} N/m")
     return rows
 
+
 def errors(bem: dict, fem: dict, mu: float) -> dict:
     """The compared quantities' errors of one BEM run against one FEM run (module
     docstring); nan where a quantity does not apply (the creepage where it is given, the
@@ -151,6 +157,7 @@ def errors(bem: dict, fem: dict, mu: float) -> dict:
         "creepage": math.nan if given else abs(bem["xi"] - fem["xi"]) / abs(fem["xi"]),
         "stick_edge": abs(bem["stick"] - fem["stick"]) / (fem["lead"] - fem["trail"]),
     }
+
 
 def run(case: dict, ctx) -> CaseResult:
     t0 = time.perf_counter()
