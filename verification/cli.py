@@ -9,6 +9,10 @@ previous report is left as it was.
 
 ``--out`` is replaced only when it is a report ``verify`` wrote (it carries the marker
 file :data:`verification.out_folder.MARKER`) or empty; see :mod:`verification.out_folder`.
+
+``--workers N`` and ``--scheduler ADDRESS`` run the cases side by side on Dask
+(:mod:`verification.parallel`); the report is the same as a serial run's but for its
+timings.
 """
 
 from __future__ import annotations
@@ -22,6 +26,7 @@ from pathlib import Path
 
 from .out_folder import FORMAT, MARKER, OutFolderError, marker_format
 from .out_folder import check as check_out_folder
+from .parallel import TIMEOUT, close_client, open_client, run_cases, workers_count
 
 # The report and the runner (numpy, scipy, the solvers) are imported inside the functions,
 # after the arguments are parsed: --help answers without loading them.
@@ -66,6 +71,24 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("--drift", type=float, default=0.25, metavar="FRACTION",
                    help="fraction of a gate's tolerance that counts as drift (default 0.25)")
     p.add_argument("--fail-on-drift", action="store_true", help="exit 1 when any gate drifted")
+    where = p.add_mutually_exclusive_group()
+    where.add_argument("--workers", type=workers_count, metavar="N",
+                       help="run the cases side by side on a local Dask cluster of N worker processes, one "
+                            "thread each, BLAS at one thread (unless OPENBLAS_NUM_THREADS, MKL_NUM_THREADS or "
+                            "OMP_NUM_THREADS says otherwise); the paper's sweeps run here and submit to it. "
+                            "N cases are in memory at once: the peak is about the sum of the N largest cases' "
+                            "own peaks (the 3D rolling FEM: 3.2 GB, 6.5 GB with --full) plus 0.2 GB for this "
+                            "process (--quick: 1.1 GB with --workers 2, 0.7 GB serially). Progress: a line as "
+                            "each case starts (naming its worker), its per-stage lines forwarded from the "
+                            "worker (the lines of cases running together interleave), its verdict and time as "
+                            "it ends. The report is the serial run's but for its timings "
+                            "(default: one case after another in this process)")
+    where.add_argument("--scheduler", metavar="ADDRESS|FILE.json",
+                       help="the same on an existing Dask scheduler (tcp://HOST:PORT or a scheduler file), "
+                            f"which must answer within {TIMEOUT:g} s. Its workers need this project installed "
+                            "and the files a case reads (a --method results folder, a DMA table) at the same "
+                            "paths; a --method .py file travels with the case. Results come back as data: the "
+                            "report and its figures are written here")
     return p
 
 
@@ -142,6 +165,18 @@ def _inside(path: Path, folder: Path) -> bool:
     return folder in path.parents
 
 
+def _client(args):
+    """The Dask client of ``--workers``/``--scheduler``; ``None`` (the error said) when the
+    scheduler cannot be reached."""
+    from sweeps.spec import SweepError
+
+    try:
+        return open_client(args.workers, args.scheduler)
+    except SweepError as exc:
+        print(f"verify: error: {exc}", file=sys.stderr)
+        return None
+
+
 def main(argv: list[str] | None = None) -> int:
     args = _parser().parse_args(argv)
     from .report import ReportError, check_junit, check_out, drift, summary_line, write_report
@@ -149,6 +184,16 @@ def main(argv: list[str] | None = None) -> int:
 
     def progress(line: str) -> None:
         print(line, file=sys.stderr, flush=True)
+
+    def done(index: int, result) -> None:
+        failed = [g for g in result.gates if not g.passed]
+        n = sum(not g.report_only for g in result.gates)
+        progress(f"  {result.name}: {'PASS' if result.passed else 'FAIL'} ({n - len(failed)}/{n} gates, "
+                 f"{len(result.gates) - n} reported, {result.seconds:.1f} s)")
+        for g in failed:
+            progress(f"    FAIL {g.method} {g.quantity} vs {g.against} ({g.level}): error {g.error:.3e} > "
+                     f"{g.tolerance:.1e}: {g.reason}")
+        results.append(result)
 
     try:
         if not args.drift > 0:
@@ -182,19 +227,17 @@ def main(argv: list[str] | None = None) -> int:
             return EXIT_INPUT
 
     previous = signal.signal(signal.SIGTERM, _on_sigterm)
-    results = []
+    results, client = [], None
     try:
-        for i, case in enumerate(cases, 1):
-            progress(f"[{i}/{len(cases)}] {case['name']}: {case['title']}")
-            result = run_case(case, progress, quick=args.quick)
-            failed = [g for g in result.gates if not g.passed]
-            n = sum(not g.report_only for g in result.gates)
-            progress(f"  {case['name']}: {'PASS' if result.passed else 'FAIL'} ({n - len(failed)}/{n} gates, "
-                     f"{len(result.gates) - n} reported, {result.seconds:.1f} s)")
-            for g in failed:
-                progress(f"    FAIL {g.method} {g.quantity} vs {g.against} ({g.level}): error {g.error:.3e} > "
-                         f"{g.tolerance:.1e}: {g.reason}")
-            results.append(result)
+        if args.workers or args.scheduler:
+            client = _client(args)
+            if client is None:
+                return EXIT_INPUT
+            results = run_cases(cases, client, args.quick, progress, done)
+        else:
+            for i, case in enumerate(cases, 1):
+                progress(f"[{i}/{len(cases)}] {case['name']}: {case['title']}")
+                done(i - 1, run_case(case, progress, quick=args.quick))
         drifts = drift(results, baseline, args.drift) if baseline is not None else []
         report = write_report(results, args.out, junit=args.junit, drifts=drifts)
     except (KeyboardInterrupt, _Terminated):
@@ -205,6 +248,8 @@ def main(argv: list[str] | None = None) -> int:
         print(f"verify: error: the report could not be written: {exc}", file=sys.stderr)
         return EXIT_FAIL
     finally:
+        if client is not None:
+            close_client(client)
         signal.signal(signal.SIGTERM, previous)
     ok = all(r.passed for r in results)
     print(f"{summary_line(results)} Report: {report} and {report.with_suffix('.html')}, "

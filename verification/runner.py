@@ -22,7 +22,8 @@ from .kinds import KINDS, Context
 from .results import CaseResult, Gate
 from .schema import GATE, HEADER, CaseError, check_problem, check_table, close
 
-__all__ = ["CASES_DIR", "CaseError", "list_cases", "load_case", "load_cases", "run_case", "add_method"]
+__all__ = ["CASES_DIR", "CaseError", "list_cases", "load_case", "load_cases", "run_case", "failed_result",
+           "add_method"]
 
 CASES_DIR = Path(__file__).resolve().parent / "cases"
 #: the sections of [problem] every method needs (those the case-file schema requires of
@@ -131,23 +132,33 @@ def load_cases(paths: list[Path], extra_methods: list[str] = ()) -> list[dict]:
     return cases
 
 
-def run_case(case: dict, progress: Callable[[str], None] = print, quick: bool = False) -> CaseResult:
+def failed_result(case: dict, reason: str, seconds: float = 0.0) -> CaseResult:
+    """The result of a case that did not run: no runs, one failed ``run`` gate whose
+    reason is ``reason``; ``seconds`` the wall time it took to fail (s)."""
+    result = CaseResult(case["name"], case["title"], case.get("why", ""), case["kind"])
+    result.extra["error"] = reason
+    result.gates.append(Gate(case=case["name"], quantity="run", method="-", against="-", level="-",
+                             value=float("nan"), reference=float("nan"), error=float("nan"), tolerance=0.0,
+                             reason=f"the case did not run: {reason}"))
+    result.seconds = seconds
+    return result
+
+
+def run_case(case: dict, progress: Callable[[str], None] = print, quick: bool = False,
+             client=None) -> CaseResult:
     """Solve one checked case with every method and level it names; evaluate its gates.
     An exception inside a kind (``SystemExit`` included) becomes a failed case with the
-    error as its reason; Ctrl-C and SIGTERM end the run."""
+    error as its reason; Ctrl-C and SIGTERM end the run.
+
+    ``client``: a ``distributed.Client`` a kind that runs on Dask itself submits to
+    (``verify --workers``/``--scheduler``); default its own local cluster."""
     kind = KINDS[case["kind"]]
     methods = case.get("_methods") or {**method_registry.builtin(), **method_registry.installed()}
-    ctx = Context(progress=progress, quick=quick, methods=methods)
+    ctx = Context(progress=progress, quick=quick, methods=methods, client=client)
     t0 = time.perf_counter()
     try:
         return kind.run(copy.deepcopy({k: v for k, v in case.items() if k != "_methods"}), ctx)
     except MemoryError:
         raise
     except (Exception, SystemExit) as exc:
-        result = CaseResult(case["name"], case["title"], case.get("why", ""), case["kind"])
-        result.extra["error"] = f"{type(exc).__name__}: {exc}"
-        result.gates.append(Gate(case=case["name"], quantity="run", method="-", against="-", level="-",
-                                 value=float("nan"), reference=float("nan"), error=float("nan"), tolerance=0.0,
-                                 reason=f"the case did not run: {type(exc).__name__}: {exc}"))
-        result.seconds = time.perf_counter() - t0
-        return result
+        return failed_result(case, f"{type(exc).__name__}: {exc}", time.perf_counter() - t0)

@@ -16,11 +16,11 @@ import pytest
 from sweeps import read_sweep, run_sweep
 from sweeps.cli import main
 from sweeps.paper import read_table
+from tests.sweeps.dask_processes import dask_cluster  # noqa: F401 (a fixture)
 
 ROOT = Path(__file__).resolve().parents[2]
 BASE = ROOT / "examples" / "sweeps" / "base-frictionless.toml"
 FRICTION = ROOT / "examples" / "sweeps" / "base-friction.toml"
-DASK = Path(sys.executable).with_name("dask")
 TIMING = {"seconds", "kernel_s", "solve_s", "energy_s", "checksum"}  # the checksum covers the timings
 
 
@@ -46,32 +46,6 @@ def assert_same_numbers(rows, other, rel=1e-9):
                 assert float(r[k]) == pytest.approx(float(o[k]), rel=rel, abs=1e-300), (r["index"], k)
             except ValueError:
                 assert r[k] == o[k], (r["index"], k)
-
-
-@pytest.fixture
-def dask_cluster(tmp_path):
-    """A scheduler and one worker, each its own process; yields the scheduler's address."""
-    info = tmp_path / "scheduler.json"
-    env = {**os.environ, "DASK_DISTRIBUTED__LOGGING__DISTRIBUTED": "error"}
-    scheduler = subprocess.Popen([str(DASK), "scheduler", "--host", "127.0.0.1", "--port", "0", "--no-dashboard",
-                                  "--scheduler-file", str(info)], env=env, stdout=subprocess.DEVNULL,
-                                 stderr=subprocess.DEVNULL, start_new_session=True)
-    worker = None
-    try:
-        for _ in range(300):
-            if info.exists() and info.stat().st_size:
-                break
-            time.sleep(0.05)
-        address = json.loads(info.read_text())["address"]
-        worker = subprocess.Popen([str(DASK), "worker", address, "--nworkers", "1", "--nthreads", "1",
-                                   "--no-dashboard"], env=env, stdout=subprocess.DEVNULL,
-                                  stderr=subprocess.DEVNULL, start_new_session=True)
-        yield address
-    finally:  # each in its own session: the worker's nanny and its process go together
-        for proc in (worker, scheduler):
-            if proc is not None:
-                os.killpg(proc.pid, signal.SIGKILL)
-                proc.wait()
 
 
 def test_a_sweep_on_a_running_cluster_gives_the_local_table(tmp_path, dask_cluster, capsys):
