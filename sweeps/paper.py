@@ -7,7 +7,8 @@ sweep's table (Zehil and Gavin 2013).
   two laws over a range.
 * Section 11.6: the friction share below 1.55 % up to ``P = 150 N``
   (:func:`friction_share_max`); its maximum for ``H`` between 6 and 8 mm (fig. 9,
-  :func:`peak_position` on the thickness). The paper's "contribution of friction" can be
+  :func:`peak_position` on the thickness); what we find instead, a share that rises
+  towards thin layers (:func:`share_rise`). The paper's "contribution of friction" can be
   read two ways, and both are here: the part of the dissipated power lost by slip
   (the table's ``friction_share``, the reading of section 11.2's "less than 0.05 N
   originate from slipping friction"), or how much friction raises ``R_r`` over the
@@ -15,6 +16,8 @@ sweep's table (Zehil and Gavin 2013).
   with/without curves of figures 7 and 8).
 * Section 11.7: the speed of the rolling-resistance peak (fig. 10, :func:`peak_position`
   on ``log V``).
+* :func:`grid_estimate`: the limit and grid error of a figure from two or more grids
+  halved in turn (docs/sweeps.md, "Figure 9 under each kinematics").
 
 Units: SI (N, m, m/s); shares are fractions (0.0155 for 1.55 %).
 """
@@ -32,7 +35,8 @@ from .report import curves
 from .table import as_float
 
 __all__ = ["TABLE2", "TABLE3", "FRICTION_SHARE_LIMIT", "SHARE_PEAK_RANGE", "read_table", "paper_fit", "law_gap",
-           "friction_share_max", "friction_effect", "peak_position", "curve", "QUICK", "findings", "run_quick"]
+           "friction_share_max", "friction_effect", "peak_position", "curve", "QUICK", "findings", "run_quick",
+           "SHARE_RISE_THICKNESS", "share_rise", "grid_estimate"]
 
 #: the quick (coarse-grid) sweep files for CI, relative to the repository's root
 QUICK = {"loads": "examples/sweeps/quick/quick-table2.toml", "thickness": "examples/sweeps/quick/quick-table3.toml",
@@ -52,6 +56,9 @@ TABLE3 = {
 FRICTION_SHARE_LIMIT = 0.0155
 #: section 11.6, fig. 9: the thickness (m) of the friction share's maximum
 SHARE_PEAK_RANGE = (6e-3, 8e-3)
+#: fig. 9 as we find it: the thin and the thick layer (m) whose friction shares measure
+#: the rise towards thin layers (:func:`share_rise`)
+SHARE_RISE_THICKNESS = (1e-3, 5e-3)
 
 
 def read_table(path: str | Path) -> list[dict]:
@@ -129,6 +136,44 @@ def peak_position(x, y, log: bool = False, window: int = 5) -> float:
     return 10 ** vertex if log else vertex
 
 
+def share_rise(rows: list[dict], thin: float = SHARE_RISE_THICKNESS[0], thick: float = SHARE_RISE_THICKNESS[1],
+               **fixed) -> float:
+    """``share(thick) / share(thin)``: the friction share on the ``thick`` layer in units
+    of the share on the ``thin`` one (thicknesses in m), over the ``ok`` rows whose other
+    columns equal ``fixed`` (:func:`curve`). Small when the share rises towards thin
+    layers; ``nan`` when either thickness is missing."""
+    H, share = curve(rows, "layer.thickness", "friction_share", **fixed)
+    pick = {t: share[np.isclose(H, t, rtol=1e-9, atol=0.0)] for t in (thin, thick)}
+    if any(v.size != 1 or not math.isfinite(v[0]) for v in pick.values()):
+        return math.nan
+    return float(pick[thick][0] / pick[thin][0])
+
+
+def grid_estimate(values, ratio: float = 2.0):
+    """Limit and grid error of a figure from its values on grids refined by ``ratio``,
+    coarse to fine, as a :class:`bem.convergence.Convergence`. Three or more levels:
+    :func:`bem.convergence.richardson` on the finest three (the observed order; where it
+    is outside ``[0.5, 5]``, three times the last change). Two levels: first order
+    assumed (the frictional figures' order, docs/derivations.md): limit ``q2 + (q2 - q1)
+    / (ratio - 1)``, error ``|q2 - q1| / (ratio - 1)``, ``order = 1`` and ``asymptotic =
+    False`` (an assumption, not an observation).
+
+    Raises
+    ------
+    ValueError
+        Fewer than two values.
+    """
+    from bem.convergence import Convergence, richardson
+
+    q = [float(v) for v in values]
+    if len(q) < 2:
+        raise ValueError(f"a grid estimate needs at least 2 grids, got {len(q)}")
+    if len(q) >= 3:
+        return richardson(q[-3:], ratio)
+    step = (q[1] - q[0]) / (ratio - 1)
+    return Convergence(tuple(q), 1.0, q[1] + step, abs(step), False)
+
+
 def curve(rows: list[dict], x: str, y: str, **fixed) -> tuple[np.ndarray, np.ndarray]:
     """``(xs, ys)`` of the ``ok`` rows whose other columns equal ``fixed`` (compared as
     numbers where both are numbers), e.g. ``curve(rows, "loading.speed",
@@ -161,10 +206,11 @@ def findings(load_rows: list[dict], thickness_rows: list[dict], speed_rows: list
     ``y``, the paper's law, and ``gap``, the largest relative difference of the two over
     our fitted range), ``friction_share_max`` (P <= 150 N, over the load sweep),
     ``share_peak_thickness`` (per P, m, :func:`peak_position` of the friction share over
-    the thickness sweep) and ``peak_speed`` (per remaining label of the speed sweep, m/s,
+    the thickness sweep), ``share_rise`` (per P, :func:`share_rise` over the thickness
+    sweep: the share at 5 mm over that at 1 mm) and ``peak_speed`` (per remaining label of the speed sweep, m/s,
     :func:`peak_position` in ``log V``).
     """
-    out: dict = {"y": y, "table2": {}, "table3": {}, "share_peak_thickness": {}, "peak_speed": {}}
+    out: dict = {"y": y, "table2": {}, "table3": {}, "share_peak_thickness": {}, "share_rise": {}, "peak_speed": {}}
     from .fits import fit_power, fit_two_exponential
 
     for H in TABLE2:
@@ -182,6 +228,9 @@ def findings(load_rows: list[dict], thickness_rows: list[dict], speed_rows: list
         Hs, share = curve(thickness_rows, "layer.thickness", "friction_share", **{"loading.load": load})
         if Hs.size >= 3:
             out["share_peak_thickness"][load] = peak_position(Hs, share)
+        rise = share_rise(thickness_rows, **{"loading.load": load})
+        if math.isfinite(rise):
+            out["share_rise"][load] = rise
     out["friction_share_max"] = friction_share_max(load_rows)
     labels = {(k, r[k]) for r in speed_rows for k in ("layer.thickness", "loading.load") if k in r}
     keys = sorted({k for k, _ in labels})

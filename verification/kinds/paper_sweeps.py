@@ -7,7 +7,10 @@ Errors: ``table2`` and ``table3`` the largest relative difference between our fi
 and the paper's over the fitted range (Table 3 from ``table3_thickness_min``; the full
 range as ``table3_full_range``); ``friction_share_max`` the largest share itself (its
 tolerance is the paper's bound); ``share_peak_thickness`` the distance of our peak from
-the paper's 6-8 mm, in units of that range's width.
+the paper's 6-8 mm, in units of that range's width; ``share_rise`` the friction share at
+H = 5 mm in units of the share at 1 mm (:func:`sweeps.paper.share_rise`: small when the
+share rises towards thin layers, as it does under every kinematics and grid; its
+reference 1 is a share that does not change with H).
 """
 
 from __future__ import annotations
@@ -23,8 +26,11 @@ from ..schema import CaseError, Field, check_table, close
 
 ADDS_METHODS = False
 NEEDS_PROBLEM = False
+#: its sweeps run on Dask: under ``verify --workers``/``--scheduler`` the case runs in
+#: verify's process (it reads its sweep files there) and submits to verify's cluster
+USES_DASK = True
 SECTIONS = ("sweeps",)
-QUANTITIES = ("table2", "table3", "table3_full_range", "friction_share_max", "share_peak_thickness")
+QUANTITIES = ("table2", "table3", "table3_full_range", "friction_share_max", "share_peak_thickness", "share_rise")
 FIELDS = {
     "loads": Field("string", True, doc="sweep file: H x P, with friction (Table 2, fig. 7)"),
     "thickness": Field("string", True, doc="sweep file: P x H, with friction (Table 3, figs. 8-9)"),
@@ -74,7 +80,7 @@ def run(case: dict, ctx) -> CaseResult:
     result = CaseResult(case["name"], case["title"], case.get("why", ""), case["kind"])
     y = case["sweeps"].get("y", "rolling_resistance_energy")
     rows = {}
-    client = connect()
+    client = ctx.client if ctx.client is not None else connect()
     try:
         with tempfile.TemporaryDirectory(prefix="verify-sweeps-") as out:
             for key, file in case["_files"].items():
@@ -85,10 +91,11 @@ def run(case: dict, ctx) -> CaseResult:
                 ctx.progress(f"  {case['name']}: {len(report.rows)} points, {len(failed)} failed")
                 rows[key] = report.rows
     finally:
-        cluster = getattr(client, "cluster", None)
-        client.close()
-        if cluster is not None:
-            cluster.close()
+        if client is not ctx.client:  # the local cluster it started
+            cluster = getattr(client, "cluster", None)
+            client.close()
+            if cluster is not None:
+                cluster.close()
     found = paper.findings(rows["loads"], rows["thickness"], rows["speed"], y)
     h_min = case["sweeps"].get("table3_thickness_min", 0.0)
     measured = {}
@@ -106,6 +113,8 @@ def run(case: dict, ctx) -> CaseResult:
     for P, H in found["share_peak_thickness"].items():
         outside = max(lo - H, H - hi, 0.0) / (hi - lo)
         measured[f"share_peak_thickness[P={P:g}N]"] = ("share_peak_thickness", H, 0.5 * (lo + hi), outside)
+    for P, rise in found["share_rise"].items():
+        measured[f"share_rise[P={P:g}N]"] = ("share_rise", rise, 1.0, rise)  # 1: a share flat in H
     for spec in case["gates"]:
         hits = [(name, m) for name, m in measured.items() if m[0] == spec["quantity"]]
         if not hits:
