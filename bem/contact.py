@@ -14,8 +14,9 @@ load control and the geometric overlap ``{s < d}`` under displacement control (w
 ``d`` prescribed, all reachable nodes would ask for upward displacements of up to the
 profile's height, i.e. tension, on most of them). It needs no symmetry of ``C`` (steady
 rolling makes it non-symmetric) and ends with the exact complementarity solution of the
-discrete problem. Linear solves are dense LU on small sets and restarted GMRES with the
-FFT operator otherwise (the flexible, right-preconditioned :func:`bem.linear.fgmres`,
+discrete problem. Linear solves are dense LU on small sets (and on sets of up to
+:data:`DENSE_FALLBACK` nodes where GMRES fails) and restarted GMRES with the FFT operator
+otherwise (the flexible, right-preconditioned :func:`bem.linear.fgmres`,
 which minimises the true residual and orthogonalises by matrix products: 1.2-1.7x
 faster than SciPy's GMRES here, 55 -> 47 iterations at 61 x 61, 87 -> 70 at 257 x 257),
 preconditioned by the inverse of the kernel's wrapped circulant (two FFTs,
@@ -41,6 +42,21 @@ exact solves on the runs of each grid row with the row filter ``(C_row / C)`` af
 cost 26 ms CPU a set at 155 x 155 (113 runs of up to 100 nodes), the price of 28 GMRES
 iterations (0.95 ms each, product and preconditioner), to save about three.
 
+A penetrating node joins the next set only if it penetrates under the compressive forces
+alone (:func:`_lifted`, one product on the grid when a step both drops and adds): a tensile
+node lifts the surface around it, and on a lagging layer chiefly behind it, where the
+layer recovers slowly. A converged set is one for either rule (it has no tension, so
+nothing is removed), and there is only one: every Fourier mode of the kernel has a
+compliance of positive real part (:func:`bem.spectral.mode_symbols`; the uniform mode,
+zero on an incompressible layer, aside), so ``x^T C x > 0`` on any set, and two
+solutions ``F1``, ``F2`` of the same load would give ``(F1 - F2)^T C (F1 - F2) =
+-F1^T h2 - F2^T h1 <= 0``. The rule changes the path only: on the conveyor idler of
+``examples/conveyor-idler-dma.toml`` at -30 degC (65 x 377 nodes) the plain update takes
+49-55 sets at the four speeds of its sweep, a node creeping one step a set along a
+rounded roll end (see :func:`_lifted`), and this one 7-9 (the same sets; forces within
+5e-8 of the largest, the GMRES accuracy: each 2e-8 from dense LU on the set); at -20
+degC, 6 m/s and ``a_x`` = 0.125 mm (129 x 377 nodes) 100 sets or more against 9-10.
+
 A set that recurs (a cycle) switches to one-node updates; a cycle there raises
 :class:`ContactNotConverged`.
 """
@@ -62,7 +78,7 @@ from .result import SHARED_SCALARS, ContactFigures, NormalContact, SolveRecord, 
 __all__ = [
     "ContactError", "ContactNotConverged", "ContactAtEdge", "SolveRecord", "ContactFigures", "NormalContact",
     "solve_normal", "grid_summary", "pressure_centroid_x", "SHARED_SCALARS", "NormalSystem", "coarse_grid",
-    "edge_nodes", "coarse_solution", "DENSE_LIMIT",
+    "edge_nodes", "coarse_solution", "DENSE_LIMIT", "DENSE_FALLBACK",
 ]
 
 
@@ -190,6 +206,15 @@ def _box(idx: np.ndarray, shape: tuple[int, int]) -> tuple[tuple[int, int], np.n
 DENSE_LIMIT = 300
 
 
+#: a set of up to this many nodes on which GMRES fails is solved by dense LU instead
+#: (:class:`bem.linear.LinearSolver`'s ``dense_fallback``; 128 MB, about 1 s of one core
+#: at 4000). GMRES fails where the wrapped circulant misses the set's spectrum: a 10 mm
+#: layer of a three-parameter solid (G0 = 0.65 MPa, f = 65, tau = 0.35 ms) under a sphere
+#: (R = 20 mm, 100 N, 2.8 m/s) on 49 x 49 nodes, where the preconditioned matrix of a
+#: 1455-node set has half its eigenvalues below 0.05 in real part, some down to -10
+DENSE_FALLBACK = 4000
+
+
 def coarse_grid(grid: Grid) -> Grid | None:
     """Every other node of ``grid`` (same period and truncation), or ``None`` when the grid
     is small (< 625 nodes, or < 9 a side) or even-sized: the coarse level of the solvers'
@@ -247,6 +272,23 @@ def _coarse_start(operator, s, reachable, load, indentation, dense_limit, rtol, 
     return grown.ravel() & reachable, res
 
 
+def _lifted(operator: ComplianceOperator, F: np.ndarray, drop: np.ndarray, base: np.ndarray,
+            tol: float) -> np.ndarray:
+    """Flat mask of the nodes whose gap ``base + C F`` (m; ``base = s - d``) is at least
+    ``-tol`` once the forces on ``drop`` (the tensile ones, N) are removed: a penetration
+    there is made by the tension that the next set drops, so the node does not join it.
+
+    Without this test, a lagging layer makes the primal-dual active set creep: a node
+    that joins far from the contact (on the rounded end of a roll, where the profile is
+    hundreds of micrometres above the indentation) needs a tension of 9-120 N to close its
+    gap (the largest compressive nodal force 0.1-16 N), which lifts its trailing neighbour
+    (the layer recovers slowly behind a load) into a penetration of 0.15 to 1 times the
+    indentation; the next set swaps the node for that neighbour, and so on one node a step
+    to the region's edge, no set repeating (the conveyor idler at -20 degC, 6 m/s, 129 x
+    377 nodes: 100 sets or more; at -30 degC on 65 x 377 nodes, 49-55 sets)."""
+    return base + operator.apply(np.where(drop, 0.0, F).reshape(operator.grid.shape)).ravel() >= -tol
+
+
 def solve_normal(
     operator: ComplianceOperator,
     profile: np.ndarray,
@@ -275,7 +317,8 @@ def solve_normal(
         Active-set iterations allowed.
     dense_limit : int
         Largest contact set solved by dense LU; larger ones use GMRES (default
-        :data:`DENSE_LIMIT`).
+        :data:`DENSE_LIMIT`), and by dense LU after GMRES fails on them up to
+        :data:`DENSE_FALLBACK` nodes; 0: GMRES on every set, never dense LU.
     rtol : float
         GMRES relative tolerance.
     progress : callable, optional
@@ -315,7 +358,8 @@ def solve_normal(
             )
     else:
         first = reachable
-    solve = LinearSolver(dense_limit, rtol, restart=100, maxiter=100, error=ContactNotConverged)
+    solve = LinearSolver(dense_limit, rtol, restart=100, maxiter=100, error=ContactNotConverged,
+                         dense_fallback=max(dense_limit, DENSE_FALLBACK) if dense_limit else 0)
     start, coarse = _coarse_start(operator, s, reachable, load, indentation, dense_limit, rtol, coarse)
     active = first.copy() if start is None or not start.any() else start
     seen: set[bytes] = set()
@@ -334,6 +378,10 @@ def solve_normal(
         scale = max(abs(d), 1e-300)
         drop = active & (F <= 0)
         add = ~active & (h < -1e-12 * scale)
+        if drop.any() and add.any():
+            # a node joins only if it penetrates under the compressive forces alone (see
+            # _lifted): the tension about to be dropped lifts the surface next to it
+            add &= ~_lifted(operator, F, drop, s - d, 1e-12 * scale)
         history.append(int(active.sum()))
         if progress:
             progress(f"active set {it}: {idx.size} nodes, d = {d:.6e} m, -{int(drop.sum())} +{int(add.sum())}")

@@ -223,6 +223,11 @@ class LinearSolver:
         call at ``single_from`` runs them (single-precision products and basis), each
         reducing the residual left, recomputed by ``matvec``, by at most this (-); it goes
         on in double precision only when a phase fails; 0: in double precision throughout.
+    dense_fallback : int
+        A GMRES solve that fails on a system of at most this many unknowns is solved by
+        dense LU instead (0: never), and so are the later calls up to that size: where the
+        preconditioner misses the system's spectrum, a bounded dense solve (``8 n^2``
+        bytes) instead of an error, and one failed GMRES run instead of one a call.
     what : str
         Names the system in error messages (``"3 x 1977 unknowns of the stick/slip set"``).
 
@@ -232,12 +237,15 @@ class LinearSolver:
         GMRES iterations summed over the calls.
     used_gmres : bool
         Whether any call went to GMRES.
+    fallbacks : int
+        GMRES solves that failed and were solved by dense LU (``dense_fallback``).
     """
 
     def __init__(self, dense_limit: int, rtol: float, *, restart: int = 100, maxiter: int = 100,
                  correction: bool = False, error: type = RuntimeError, floor: float = 0.0,
-                 single_from: float = np.inf, single_start: float = 0.0):
+                 single_from: float = np.inf, single_start: float = 0.0, dense_fallback: int = 0):
         self.dense_limit, self.rtol, self.correction = dense_limit, rtol, correction
+        self.dense_fallback, self.fallbacks = dense_fallback, 0
         self.single_from, self.single_start = single_from, single_start
         self.restart, self.maxiter, self.error = restart, maxiter, error
         self.floor = floor
@@ -252,13 +260,23 @@ class LinearSolver:
         in error messages."""
         rtol = self.rtol if rtol is None else rtol
         n = system.n
-        if n <= self.dense_limit:
-            try:
-                return np.linalg.solve(system.dense(), system.b)
-            except np.linalg.LinAlgError as exc:
-                raise self.error(f"singular system ({what or f'{n} unknowns'}): {exc}") from exc
+        if n <= self.dense_limit or (self.fallbacks and n <= self.dense_fallback):
+            return self._dense(system, what)
         self.used_gmres = True
-        return self._fgmres(system, getattr(system, "precondition", None), guess, rtol, what, hint, of_b)
+        try:
+            return self._fgmres(system, getattr(system, "precondition", None), guess, rtol, what, hint, of_b)
+        except self.error:
+            if n > self.dense_fallback:
+                raise
+        self.fallbacks += 1
+        return self._dense(system, what)
+
+    def _dense(self, system, what):
+        """Dense LU on ``system``; the caller's error when it is singular."""
+        try:
+            return np.linalg.solve(system.dense(), system.b)
+        except np.linalg.LinAlgError as exc:
+            raise self.error(f"singular system ({what or f'{system.n} unknowns'}): {exc}") from exc
 
     def _fgmres(self, system, prec, guess, rtol, what, hint, of_b=False):
         """:func:`fgmres` on the correction to ``guess`` (or from zero), the residual
