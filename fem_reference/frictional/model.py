@@ -11,7 +11,7 @@ import numpy as np
 
 from ..errors import InputError
 
-__all__ = ["MODES", "KINEMATICS", "RollingFriction", "FrictionalRollingResult"]
+__all__ = ["MODES", "KINEMATICS", "RollingFriction", "FrictionalRollingResult", "RollingEnergy"]
 
 #: loading modes: the row that closes the cylinder's equilibrium
 MODES = ("omega", "force", "towed", "pushed_at_top")
@@ -84,8 +84,29 @@ class RollingFriction:
             raise InputError(f"friction.max_iterations must be an integer >= 1, got {self.max_iterations!r}")
 
 
+class RollingEnergy:
+    """R_r^F, the energy figure and the balance of a frictional rolling result with
+    ``rolling_resistance``, ``friction_power``, ``dissipation`` and ``speed`` (per unit
+    length in plane strain: N/m, W/m; totals in 3D: N, W)."""
+
+    @property
+    def rolling_resistance_friction(self) -> float:
+        """R_r^F = friction power / V (eq. 2)."""
+        return self.friction_power / self.speed
+
+    @property
+    def rolling_resistance_energy(self) -> float:
+        """(bulk dissipation + friction power) / V."""
+        return (self.dissipation + self.friction_power) / self.speed
+
+    @property
+    def energy_balance(self) -> float:
+        """R_r / rolling_resistance_energy - 1 (-): 0 for the exact solution."""
+        return self.rolling_resistance / self.rolling_resistance_energy - 1.0
+
+
 @dataclass(frozen=True)
-class FrictionalRollingResult:
+class FrictionalRollingResult(RollingEnergy):
     """Steady frictional rolling of a rigid cylinder on the FEM layer, per unit length.
 
     Nodal arrays on the candidate nodes (x increasing): ``normal`` N_i (N/m,
@@ -135,21 +156,6 @@ class FrictionalRollingResult:
     def tangential_force(self) -> float:
         """sum S (N/m): the friction force on the layer along +x (Carter's Q)."""
         return float(self.tangential.sum())
-
-    @property
-    def rolling_resistance_friction(self) -> float:
-        """R_r^F = sum S w / V (N/m, eq. 2)."""
-        return self.friction_power / self.speed
-
-    @property
-    def rolling_resistance_energy(self) -> float:
-        """(bulk dissipation + friction power) / V (N/m)."""
-        return (self.dissipation + self.friction_power) / self.speed
-
-    @property
-    def energy_balance(self) -> float:
-        """R_r / rolling_resistance_energy - 1 (-): 0 for the exact solution."""
-        return self.rolling_resistance / self.rolling_resistance_energy - 1.0
 
     @property
     def stick_zone(self):

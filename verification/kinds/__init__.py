@@ -15,14 +15,15 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Callable
 
-from . import (friction_carter, friction_layer, paper_sweeps, roller_3d, rolling_2d, rolling_3d, rolling_limits,
-               stationary, sweep, table1)
+from . import (friction_carter, friction_layer, friction_sphere, paper_sweeps, roller_3d, rolling_2d, rolling_3d,
+               rolling_limits, stationary, sweep, table1)
 
 __all__ = ["KINDS", "Context"]
 
 KINDS = {
     "friction-carter": friction_carter,
     "friction-layer": friction_layer,
+    "friction-sphere": friction_sphere,
     "stationary": stationary,
     "sweep": sweep,
     "table1": table1,
