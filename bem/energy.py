@@ -18,8 +18,12 @@ because the terms ``(m, n)`` and ``(-m, -n)`` are complex conjugates
 of ``C_mn``, the loss, contributes: an elastic layer (with or without inertia) dissipates
 nothing, and :func:`viscous_dissipation` returns an exact 0 without summing when the
 modulus is real at every frequency the modes feel (or the speed is 0). The traction of a nodal force spread on its patch (eq. 52) has the coefficients
-of eqs. 56-59. This is independent of the contact solver's nodal collocation and of the
-upwind derivative: it integrates the layer's own continuous fields.
+of eqs. 56-59; its series is not truncated, while the displacement's is the kernels'
+``u_mn = e_m e_n C_mn t_mn`` for ``|m| <= N_tx, |n| <= N_ty`` (``e`` the
+:func:`bem.spectral.end_weights`: 1/2 on end modes that alias onto the lattice's Nyquist
+frequency), so Parseval keeps the same modes with the same weights ``e_m e_n``, once.
+This is independent of the contact solver's nodal collocation and of the upwind
+derivative: it integrates the layer's own continuous fields.
 
 Cost: with normal forces alone only ``C_ww`` is needed (``t^H C t = |t_z|^2 C_ww``), and
 it comes from the outer-grid normal compliance, fast for the many half-space modes. The
@@ -37,6 +41,7 @@ from scipy.signal import fftconvolve
 
 from .grid import Grid
 from .layer import Layer, normal_compliance_outer, surface_compliance
+from .spectral import end_weights
 
 __all__ = ["dissipates", "viscous_dissipation", "dissipation_from_tables", "power_key", "layer_power"]
 
@@ -64,7 +69,8 @@ def viscous_dissipation(grid: Grid, layer: Layer, speed: float, force_z: np.ndar
     Parameters
     ----------
     grid : Grid
-        Nodes and Fourier truncation (the sum runs over ``|m| <= N_tx``, ``|n| <= N_ty``).
+        Nodes and Fourier truncation (the sum runs over ``|m| <= N_tx``, ``|n| <= N_ty``,
+        the end modes with the kernels' :func:`bem.spectral.end_weights`).
     layer : Layer
     speed : float
         ``V`` (m/s).
@@ -86,8 +92,11 @@ def viscous_dissipation(grid: Grid, layer: Layer, speed: float, force_z: np.ndar
     wy = np.sinc(n * g.spacing_y / g.period_y) / g.period_y
     e_pos = np.exp(-1j * np.outer(g.y, nu_y)) * wy  # (K_y, n), n >= 0
     e_neg = np.exp(1j * np.outer(g.y, nu_y[1:])) * wy[1:]  # (K_y, n), -n < 0
+    # nu_x times the end weights of (m, +-n): the displacement's truncation, once
+    nu_e = nu_x[:, None] * np.outer(end_weights(g.truncation_x, g.spacing_x, g.period_x)[1:],
+                                    end_weights(g.truncation_y, g.spacing_y, g.period_y))
     if not (F[1].any() or F[2].any()):
-        return _normal_dissipation(g, layer, speed, F[0], nu_x, nu_y, G, rho_V2, wx, e_pos, e_neg)
+        return _normal_dissipation(g, layer, speed, F[0], nu_x, nu_y, nu_e, G, rho_V2, wx, e_pos, e_neg)
     flip = np.array([1.0, 1.0, -1.0])  # D = diag(1, 1, -1)
     total = 0.0
     for s in range(0, m.size, _CHUNK):
@@ -99,19 +108,21 @@ def viscous_dissipation(grid: Grid, layer: Layer, speed: float, force_z: np.ndar
         C = surface_compliance(nu_x[sl, None], nu_y[None, :], G[sl, None], rho_V2, layer.thickness)
         quad = np.einsum("mni,mnij,mnj->mn", t.conj(), C, t)
         quad_n = np.einsum("mni,mnij,mnj->mn", tn.conj(), C[:, 1:], tn)
-        total += float((nu_x[sl, None] * quad.imag).sum() + (nu_x[sl, None] * quad_n.imag).sum())
+        total += float((nu_e[sl] * quad.imag).sum() + (nu_e[sl, 1:] * quad_n.imag).sum())
     return 2 * speed * g.period_x * g.period_y * total
 
 
-def _normal_dissipation(g: Grid, layer: Layer, speed: float, Fz, nu_x, nu_y, G, rho_V2, wx, e_pos, e_neg) -> float:
+def _normal_dissipation(g: Grid, layer: Layer, speed: float, Fz, nu_x, nu_y, nu_e, G, rho_V2, wx, e_pos,
+                        e_neg) -> float:
     """:func:`viscous_dissipation` of normal forces alone: ``t^H C t = |t_z|^2 C_ww``, and
-    ``C_ww`` (even in ``nu_y``) from the fast outer-grid normal compliance."""
+    ``C_ww`` (even in ``nu_y``) from the fast outer-grid normal compliance; ``nu_e`` is
+    ``nu_x`` times the end weights, ``(m, n >= 0)``."""
     ex = np.exp(-1j * np.outer(nu_x, g.x)) * wx[:, None]  # (m, K_x)
     rows = ex @ Fz.T  # (m, K_y)
     power = np.abs(rows @ e_pos) ** 2  # (m, n >= 0)
     power[:, 1:] += np.abs(rows @ e_neg) ** 2  # the modes (m, -n)
     C_ww = normal_compliance_outer(nu_x, nu_y, G, rho_V2, layer.thickness)
-    return 2 * speed * g.period_x * g.period_y * float(np.sum(nu_x[:, None] * C_ww.imag * power))
+    return 2 * speed * g.period_x * g.period_y * float(np.sum(nu_e * C_ww.imag * power))
 
 
 def dissipation_from_tables(tables: dict, speed: float, force_z: np.ndarray, force_x: np.ndarray,

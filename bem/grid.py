@@ -27,6 +27,12 @@ class Grid:
     ``spacing_x x spacing_y`` patch (eq. 52). The layer is periodic with periods
     ``period_x, period_y`` (eqs. 19-20), which need not be multiples of the spacing, and
     the Fourier series keep the modes ``|m| <= truncation_x``, ``|n| <= truncation_y``.
+    When ``2 N_t a / L`` is an odd integer the two end modes ``+-N_t`` alias onto the
+    lattice's Nyquist frequency ``pi / a`` and each takes half its term
+    (:func:`bem.spectral.end_weights`). With ``N_t`` an odd multiple of ``L / (2 a)`` (``L`` a
+    multiple of ``a``) every lattice frequency then takes the same number of modes, and the
+    truncation's kink in the nodal operator's symbol sits at Nyquist, where only odd-even
+    fields feel it (``docs/derivations.md``, section 8, "End modes").
 
     Parameters
     ----------

@@ -8,9 +8,10 @@ the surface at node ``M`` by
 
     w(M) = q  sum_{|m| <= N_t}  sinc(m a / L) / L  C_ww(nu_m, 0; G*(-nu_m V))  exp(i nu_m (x_M - x_N))
 
-with ``nu_m = 2 pi m / L``: the 3D kernel of eqs. 56-62 with the ``n``-sum reduced to
-``n = 0`` and the ``1 / L_y`` dropped (one unit of length along ``y`` instead of a patch
-``a_y``). The same steady moving frame, complex modulus at ``omega_m = -nu_m V`` and
+with ``nu_m = 2 pi m / L`` (the end modes ``m = +-N_t`` at half weight when ``2 N_t a / L``
+is an odd integer, :func:`bem.spectral.end_weights`): the 3D kernel of eqs. 56-62 with the
+``n``-sum reduced to ``n = 0`` and the ``1 / L_y`` dropped (one unit of length along ``y``
+instead of a patch ``a_y``). The same steady moving frame, complex modulus at ``omega_m = -nu_m V`` and
 inertia ``rho V^2`` as in 3D (:mod:`bem.layer`).
 
 :class:`LineGrid` is a grid of one row that offers the attributes
@@ -32,7 +33,7 @@ import numpy as np
 from ._checks import integer, real
 from .layer import Layer, compliance_blocks, normal_compliance_outer, surface_compliance
 from .result import NormalContact
-from .spectral import BLOCKS, chirp_sum
+from .spectral import BLOCKS, chirp_sum, end_weights
 
 __all__ = [
     "LINE_DENSE_LIMIT", "LineGrid", "LineContact", "line_mode_symbols", "line_kernel", "line_kernel_direct",
@@ -162,8 +163,9 @@ class LineGrid:
 
 
 def line_mode_symbols(grid: LineGrid, layer: Layer, speed: float, block: str = "ww") -> np.ndarray:
-    """Fourier weights ``g_m = sinc(m a / L) C_PQ(nu_m, 0) / L`` of one compliance block
-    (``"ww"``, ``"wu"``, ... as :data:`bem.spectral.BLOCKS`) for ``m = 0 .. N_t``.
+    """Fourier weights ``g_m = e_m sinc(m a / L) C_PQ(nu_m, 0) / L`` of one compliance block
+    (``"ww"``, ``"wu"``, ... as :data:`bem.spectral.BLOCKS`) for ``m = 0 .. N_t``, ``e_m``
+    the :func:`bem.spectral.end_weights` (those of the 3D kernels along ``x``).
 
     Complex, shape ``(N_t + 1,)``, in m/(N/m) = m^2/N; ``C_PQ`` of the layer at
     ``G*(-nu_m V)`` with the inertia ``rho V^2`` (``speed`` is ``V``, m/s). The modes
@@ -180,7 +182,7 @@ def _symbols(grid: LineGrid, layer: Layer, speed: float, blocks: tuple) -> dict:
     nu = 2 * np.pi * m / g.period
     with np.errstate(over="ignore"):  # |omega| = inf is the glassy limit, finite in every material
         G = np.asarray(layer.material.modulus(-nu * speed), dtype=complex)
-    weight = np.sinc(m * g.spacing / g.period) / g.period
+    weight = np.sinc(m * g.spacing / g.period) / g.period * end_weights(g.truncation, g.spacing, g.period)
     if blocks == ("ww",):
         return {"ww": normal_compliance_outer(nu, np.zeros(1), G, layer.inertia(speed), layer.thickness)[:, 0]
                 * weight}
@@ -266,8 +268,9 @@ def line_dissipation(grid: LineGrid, layer: Layer, speed: float, force: np.ndarr
     ``P = 2 V L sum_{m > 0} nu_m Im(t_m^H C(nu_m, 0) t_m)`` with ``t_m = sinc(m a / L) / L
     sum_N (-F_N, S_N) exp(-i nu_m x_N)`` the Fourier coefficients of the traction
     (``sigma_z`` in tension, ``tau_xz``) and ``C`` the ``(w, u)`` block of the surface
-    compliance; normal loads alone, ``|t_m|^2 Im C_ww``. It integrates the layer's
-    continuous fields, independently of the nodal collocation and of the rolling arm;
+    compliance, the term ``m = N_t`` times its end weight as in the kernel
+    (:func:`bem.spectral.end_weights`); normal loads alone, ``|t_m|^2 Im C_ww``. It
+    integrates the layer's continuous fields, independently of the nodal collocation and of the rolling arm;
     ``P / V`` is the energy figure of the rolling resistance (N/m).
     """
     g = grid
@@ -289,7 +292,8 @@ def line_dissipation(grid: LineGrid, layer: Layer, speed: float, force: np.ndarr
     else:
         C = surface_compliance(nu, np.zeros_like(nu), G, layer.inertia(speed), layer.thickness)[:, :2, :2]
         quad = np.einsum("im,mij,jm->m", t.conj(), C, t)
-    return float(2 * speed * g.period * np.sum(nu * quad.imag))
+    ends = end_weights(g.truncation, g.spacing, g.period)[1:]
+    return float(2 * speed * g.period * np.sum(nu * ends * quad.imag))
 
 
 # ---------------------------------------------------------------------------------------

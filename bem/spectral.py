@@ -8,6 +8,9 @@ spread uniformly over the patch of node ``N`` (eq. 52) is, with ``nu = (2 pi m /
                          * C_PQ(nu; G*(omega_m)) exp(i nu . (x_M - x_N))      (eqs. 56-62)
 
 which depends on the node offset only (the "configurational similarity" of section 8).
+When ``2 N_t a / L`` is an odd integer the two end modes ``+-N_t`` fall on the same
+lattice frequency, the grid's Nyquist ``pi / a``, and each takes half its term
+(:func:`end_weights`; ``docs/derivations.md``, section 8, "End modes").
 :func:`influence_kernels` evaluates it for every offset of the grid at once: the mode
 symbols on the quarter ``m, n >= 0`` (reality ``g(-m, -n) = conj g(m, n)`` and parity in
 ``n``), then two chirp-z (Bluestein) transforms, exact for any ``a / L``, at a cost of
@@ -33,7 +36,8 @@ import scipy.fft as sfft
 from .grid import Grid
 from .layer import Layer, compliance_blocks, normal_compliance_outer, surface_compliance
 
-__all__ = ["BLOCKS", "chirp_sum", "influence_kernels", "influence_kernels_direct", "kernels_with_power", "mode_symbols"]
+__all__ = ["BLOCKS", "chirp_sum", "end_weights", "influence_kernels", "influence_kernels_direct", "kernels_with_power",
+           "mode_symbols"]
 
 #: block name -> (row, column) in the 3x3 compliance, rows/cols ordered (w, u, v)
 BLOCKS = {p + q: (i, j) for i, p in enumerate("wuv") for j, q in enumerate("wuv")}
@@ -49,17 +53,37 @@ def _check_blocks(blocks) -> tuple[str, ...]:
     return blocks
 
 
+def end_weights(truncation: int, spacing: float, period: float) -> np.ndarray:
+    """Weights of the modes ``m = 0 .. N_t`` of a truncated sum ``|m| <= N_t`` sampled on
+    nodes ``spacing`` (m) apart, ``period`` (m) the period: 1, except ``1/2`` for the end
+    modes when ``k = 2 N_t a / L`` is an odd integer. Then ``exp(+-i 2 pi N_t x_j / L) =
+    (-1)^j`` up to a common factor: both end modes fall on the lattice's Nyquist frequency
+    ``pi / a``, whose alias class would hold ``k + 1`` kept modes where every other lattice
+    frequency's holds ``k`` (``L`` a multiple of ``a``). (An even ``k`` makes ``sinc(N_t a /
+    L) = 0`` at the end modes; otherwise no two kept modes alias exactly.) Shape
+    ``(N_t + 1,)``."""
+    w = np.ones(truncation + 1)
+    k = 2 * truncation * spacing / period
+    if round(k) % 2 == 1 and abs(k - round(k)) <= 1e-9 * k:
+        w[-1] = 0.5
+    return w
+
+
 @dataclass(frozen=True)
 class _Modes:
     """The truncated Fourier modes ``0 <= m <= N_tx``, ``0 <= n <= N_ty`` of a grid: wave
     numbers ``nu_x, nu_y`` (rad/m), moduli ``G`` (Pa, complex) at ``omega_m = -nu_x V``,
-    sinc weights over the periods ``wx, wy`` (1/m), spacing over period ``rx, ry`` (-)."""
+    sinc weights over the periods ``sx, sy`` (1/m: a unit force's traction coefficients),
+    the kernels' weights ``wx, wy`` (1/m: the same times :func:`end_weights`), spacing over
+    period ``rx, ry`` (-)."""
 
     m: np.ndarray
     n: np.ndarray
     nu_x: np.ndarray
     nu_y: np.ndarray
     G: np.ndarray
+    sx: np.ndarray
+    sy: np.ndarray
     wx: np.ndarray
     wy: np.ndarray
     rx: float
@@ -71,8 +95,10 @@ def _modes(grid: Grid, layer: Layer, speed: float) -> _Modes:
     rx, ry = g.spacing_x / g.period_x, g.spacing_y / g.period_y
     m, n = np.arange(g.truncation_x + 1), np.arange(g.truncation_y + 1)
     nu_x = 2 * np.pi * m / g.period_x
-    return _Modes(m=m, n=n, nu_x=nu_x, nu_y=2 * np.pi * n / g.period_y, G=_moduli(layer, nu_x, speed),
-                  wx=np.sinc(m * rx) / g.period_x, wy=np.sinc(n * ry) / g.period_y, rx=rx, ry=ry)
+    sx, sy = np.sinc(m * rx) / g.period_x, np.sinc(n * ry) / g.period_y
+    return _Modes(m=m, n=n, nu_x=nu_x, nu_y=2 * np.pi * n / g.period_y, G=_moduli(layer, nu_x, speed), sx=sx, sy=sy,
+                  wx=sx * end_weights(g.truncation_x, g.spacing_x, g.period_x),
+                  wy=sy * end_weights(g.truncation_y, g.spacing_y, g.period_y), rx=rx, ry=ry)
 
 
 def _in_batches(rows: int, work) -> None:
@@ -84,7 +110,8 @@ def _in_batches(rows: int, work) -> None:
 def mode_symbols(grid: Grid, layer: Layer, speed: float, blocks=("ww",)) -> dict:
     """Fourier weights ``g_PQ(m, n)`` for ``0 <= m <= N_tx``, ``0 <= n <= N_ty``.
 
-    ``g = sinc_x sinc_y C_PQ / (L_x L_y)`` (m/N), complex, shape ``(N_tx + 1, N_ty + 1)``.
+    ``g = sinc_x sinc_y C_PQ / (L_x L_y)`` (m/N) times the :func:`end_weights` of both
+    directions, complex, shape ``(N_tx + 1, N_ty + 1)``.
     ``speed`` is ``V`` (m/s).
     """
     blocks = _check_blocks(blocks)
@@ -130,7 +157,7 @@ def _kernels_streamed(grid: Grid, layer: Layer, speed: float, blocks: tuple, pow
         for b, sym in _symbol_rows(layer, md.nu_x[s], md.nu_y, md.G[s], rho_V2, weight, blocks).items():
             H[b][s] = _over_n(sym, b in _ODD_IN_NY, md.ry, Ky, chirp)
             if power:
-                Hp[b][s] = _over_n(sym, b in _ODD_IN_NY, md.ry, Ky, chirp, md.wy) * _power_rows(grid, md, s)
+                Hp[b][s] = _over_n(sym, b in _ODD_IN_NY, md.ry, Ky, chirp, md.sy) * _power_rows(grid, md, s)
 
     _in_batches(md.m.size, work)
     return ({b: _over_m(H.pop(b), md.rx, Kx, chirp) for b in blocks},
@@ -138,10 +165,10 @@ def _kernels_streamed(grid: Grid, layer: Layer, speed: float, blocks: tuple, pow
 
 
 def _power_rows(grid: Grid, md: "_Modes", s: slice) -> np.ndarray:
-    """With the sinc weight ``wy(n)`` inside the sum over ``n``, what turns a kernel's
-    partial sums into a :func:`kernels_with_power` table's: ``i nu_x L_x L_y wx(m)``
-    (rows ``s`` of ``m``, a column)."""
-    return ((1j * grid.period_x * grid.period_y) * md.nu_x[s] * md.wx[s])[:, None]
+    """With the sinc weight ``sy(n)`` inside the sum over ``n``, what turns a kernel's
+    partial sums into a :func:`kernels_with_power` table's: ``i nu_x L_x L_y sx(m)``
+    (rows ``s`` of ``m``, a column; the end weights stay once, from the kernel's symbol)."""
+    return ((1j * grid.period_x * grid.period_y) * md.nu_x[s] * md.sx[s])[:, None]
 
 
 def _moduli(layer: Layer, nu_x: np.ndarray, speed: float) -> np.ndarray:
@@ -324,7 +351,7 @@ def _kernels_halfspace_split(grid: Grid, layer: Layer, speed: float, blocks: tup
     Kx, Ky = g.nodes_x, g.nodes_y
     chirp = max(Kx, Ky) > _MATMUL_NODES
     md = _modes(grid, layer, speed)
-    m, n, nu_x, nu_y, G, wx, wy, rx, ry = md.m, md.n, md.nu_x, md.nu_y, md.G, md.wx, md.wy, md.rx, md.ry
+    m, n, nu_x, nu_y, G, wx, wy, sy, rx, ry = md.m, md.n, md.nu_x, md.nu_y, md.G, md.wx, md.wy, md.sy, md.rx, md.ry
     inv_G = 1.0 / G
     need = {"ww": ("ww", "vv"), "uu": ("uu", "vv"), "uv": ("uv", "vu")}
     parts = [b for b in ("ww", "uu", "uv") if any(t in blocks for t in need[b])]
@@ -336,7 +363,7 @@ def _kernels_halfspace_split(grid: Grid, layer: Layer, speed: float, blocks: tup
         sym = halfspace_symbols(nu_x[s], nu_y)
         weight = np.outer(wx[s], wy)
         for k, b in H:
-            h = _over_n(sym[b] * weight, b in _ODD_IN_NY, ry, Ky, chirp, wy if k == "power" else None)
+            h = _over_n(sym[b] * weight, b in _ODD_IN_NY, ry, Ky, chirp, sy if k == "power" else None)
             H[k, b][s] = h * inv_G[s, None] * (_power_rows(g, md, s) if k == "power" else 1.0)
 
     _in_batches(m.size, work)
@@ -361,7 +388,7 @@ def _kernels_halfspace_split(grid: Grid, layer: Layer, speed: float, blocks: tup
         weight = np.outer(wx[s], wy[:My])
         for k, b in near:
             corr = exact[b] - hs[b] * inv_G[s, None] if b in hs else exact[b]
-            h = _over_n(corr * weight, b in _ODD_IN_NY, ry, Ky, False, wy[:My] if k == "power" else None)
+            h = _over_n(corr * weight, b in _ODD_IN_NY, ry, Ky, False, sy[:My] if k == "power" else None)
             near[k, b][s] = h * _power_rows(g, md, s) if k == "power" else h
 
     _in_batches(Mx, correction)
@@ -403,10 +430,11 @@ def kernels_with_power(grid: Grid, layer: Layer, speed: float, blocks=("ww",)) -
     patches is a quadratic form of the forces,
 
         P_visc = -V sum_PQ sum_MN F_P(M) W_PQ(x_M - x_N) F_Q(N),
-        W_PQ(d) = L_x L_y sum_mn i nu_x (sinc_x sinc_y / (L_x L_y))^2 C_PQ(nu; G*(omega_m)) exp(i nu . d)
+        W_PQ(d) = L_x L_y sum_mn e_m e_n i nu_x (sinc_x sinc_y / (L_x L_y))^2 C_PQ(nu; G*(omega_m)) exp(i nu . d)
 
     (the mode sum of :func:`bem.energy.viscous_dissipation` with the force transforms
-    written out), tables like the kernels' (``(2 K_y - 1, 2 K_x - 1)``, real, 1/m).
+    written out; ``e_m e_n`` the :func:`end_weights`, once, as in the kernels), tables like
+    the kernels' (``(2 K_y - 1, 2 K_x - 1)``, real, 1/m).
     Computing them costs one more transform of each batch of symbols, not another
     evaluation of the layer's compliance at every mode: the power of any forces is then
     a few FFTs (:func:`bem.energy.dissipation_from_tables`).
@@ -437,8 +465,9 @@ def _tables(grid: Grid, layer: Layer, speed: float, blocks, power: bool) -> tupl
 def influence_kernels_direct(grid: Grid, layer: Layer, speed: float, blocks=("ww",)) -> dict:
     """The paper's direct summation (eqs. 56-62) for unit forces at nodes 1 and ``K_x``.
 
-    Every term ``|m| <= N_tx, |n| <= N_ty`` is added explicitly; the other columns follow
-    by configurational similarity (sec. 8) with the ``y``-parity of each block.
+    Every term ``|m| <= N_tx, |n| <= N_ty`` is added explicitly, times its
+    :func:`end_weights`; the other columns follow by configurational similarity (sec. 8)
+    with the ``y``-parity of each block.
     Cost ``O(N_T N_t^2)``: a reference for small grids only.
     """
     blocks = _check_blocks(blocks)
@@ -453,6 +482,8 @@ def influence_kernels_direct(grid: Grid, layer: Layer, speed: float, blocks=("ww
     with np.errstate(invalid="ignore", divide="ignore"):
         fx = np.where(m == 0, g.spacing_x / g.period_x, np.sin(np.pi * m * g.spacing_x / g.period_x) / (np.pi * m))
         fy = np.where(n == 0, g.spacing_y / g.period_y, np.sin(np.pi * n * g.spacing_y / g.period_y) / (np.pi * n))
+    fx = fx * end_weights(g.truncation_x, g.spacing_x, g.period_x)[np.abs(m)]
+    fy = fy * end_weights(g.truncation_y, g.spacing_y, g.period_y)[np.abs(n)]
     coef = np.outer(fx, fy) / g.cell_area
     x, y = g.x, g.y
     ex = np.exp(1j * np.outer(x, nu_x))  # (K_x, modes)

@@ -6,7 +6,7 @@ time, iterations and memory.
    the median of warm calls; the energy figure (P_visc + P_fric) / V is timed apart (an
    independent check, not needed for R_r).
 2. Large frictional contacts: the same problem on ``--nodes`` x ``--nodes`` nodes
-   (half-width 5.2 mm, a = 10.4 mm / (nodes - 1), Nt = L / (2 a) + 1, as
+   (half-width 5.2 mm, a = 10.4 mm / (nodes - 1), Nt = L / (2 a) rounded up, as
    ``bem_large_grid.py``; default 257, i.e. a = 40.6 um), solved by the matrix-free GMRES
    path (the dense path above ``Friction.dense_limit`` unknowns is not used): time,
    active-set and GMRES iterations and peak RSS (resource.getrusage). ``--dense`` forces
@@ -18,6 +18,7 @@ results table (one row per case) alone goes to stdout, the running report to std
 """
 
 import argparse
+import math
 import time
 
 from _common import LAYER, machine, markdown_mode, markdown_table, peak_rss_mb, reporter, timed
@@ -56,7 +57,7 @@ def section11(repeat: int) -> None:
 def large(nodes: int, dense: bool) -> None:
     half = 5.2e-3
     a = 2 * half / (nodes - 1)
-    nt = int(0.2 / (2 * a)) + 1
+    nt = math.ceil(0.2 / (2 * a) - 1e-9)
     grid = Grid.centred((a, a), (0.2, 0.2), (nt, nt), (half, half))
     problem = Problem(LAYER, Sphere(0.02), grid, Loading(0.05, load=150.0))
     friction = Friction(0.2, dense_limit=10**9 if dense else Friction(0.2).dense_limit)

@@ -50,14 +50,20 @@ def test_chirp_kernel_equals_direct_sum(material, speed, density):
     assert np.abs(fast - slow).max() < 1e-12 * np.abs(slow).max()  # measured 7e-16
 
 
-def test_line_kernel_is_the_3d_kernel_summed_over_a_uniform_strip():
+# L_x = 0.04 m: 2 N_tx a_x / L_x = 1.2; 0.048 m: 1, the x end modes at half weight in both
+STRIP_PERIODS = pytest.mark.parametrize("Lx", [0.04, 0.048], ids=["plain", "aliased-ends"])
+
+
+@STRIP_PERIODS
+def test_line_kernel_is_the_3d_kernel_summed_over_a_uniform_strip(Lx):
     """A row of 3D patches filling one period along y (L_y = K_y a_y) carries a uniform
     line load F / a_y: the 3D kernel summed over one period of y offsets is the line kernel
-    over a_y (only n = 0 survives the sum; the n = +/-K_y modes vanish with sinc). For
-    every block (the frictional solver's line kernels): the ones coupling v to w, u vanish
-    in plane strain (0 exactly in the line tables), vv is the antiplane compliance."""
+    over a_y (only n = 0 survives the sum; the n = +/-K_y modes vanish with sinc, the
+    n = +/-K_y / 2 ones, here the end modes, cancel). For every block (the frictional
+    solver's line kernels): the ones coupling v to w, u vanish in plane strain (0 exactly
+    in the line tables), vv is the antiplane compliance."""
     layer = Layer(3e-3, ThreeParameterSolid(1e6, 0.1, 2.0), 1000.0)
-    ax, ay, Lx, Ky, Kx = 2e-4, 5e-4, 0.04, 12, 15
+    ax, ay, Ky, Kx = 2e-4, 5e-4, 12, 15
     g3 = Grid(ax, ay, Lx, Ky * ay, 120, Ky // 2, Kx, Ky)
     k3 = influence_kernels(g3, layer, 0.2, blocks=BLOCKS)
     lines = line_kernels(LineGrid(ax, Lx, 120, Kx), layer, 0.2)
@@ -74,12 +80,13 @@ def test_line_kernel_is_the_3d_kernel_summed_over_a_uniform_strip():
             < 1e-12 * scale, block
 
 
-def test_line_dissipation_is_the_3d_dissipation_of_a_uniform_strip():
+@STRIP_PERIODS
+def test_line_dissipation_is_the_3d_dissipation_of_a_uniform_strip(Lx):
     """Line loads N', S' (N/m) on every row of a 3D grid filling one period along y are the
     nodal forces N' a_y, S' a_y: the 3D dissipation (W) over L_y is the line's (W/m), with
     the normal-tangential coupling of the layer (measured 1e-16 relative)."""
     layer = Layer(3e-3, ThreeParameterSolid(1e6, 0.1, 2.0), 1000.0)
-    ax, ay, Lx, Ky, Kx = 2e-4, 5e-4, 0.04, 12, 15
+    ax, ay, Ky, Kx = 2e-4, 5e-4, 12, 15
     g3 = Grid(ax, ay, Lx, Ky * ay, 120, Ky // 2, Kx, Ky)
     x = LineGrid(ax, Lx, 120, Kx).x
     N = np.maximum(1 - (x / 1.2e-3) ** 2, 0.0) * 50.0  # N/m per node

@@ -8,12 +8,14 @@ from bem.grid import Grid
 from bem.layer import Layer
 from bem.materials import Elastic, ThreeParameterSolid
 from bem.operator import ComplianceOperator
-from bem.spectral import BLOCKS, _chirp_sum, influence_kernels, influence_kernels_direct
+from bem.spectral import BLOCKS, _chirp_sum, end_weights, influence_kernels, influence_kernels_direct
 
 VISCO = Layer(5e-3, ThreeParameterSolid(G0=3.0e6, tau=0.25, f=1.0), density=1000.0)
 ELASTIC = Layer(5e-3, Elastic(3.0e6))
 # spacings that do not divide the periods, different in x and y, odd and even node counts
 GRID = Grid(0.7e-3, 0.9e-3, 0.02, 0.025, 40, 30, 7, 6)
+# 2 N_t a / L = 3 along x, 1 along y: the end modes alias onto the Nyquist frequencies, half weight
+ALIASED = Grid(0.5e-3, 0.8e-3, 0.02, 0.024, 60, 15, 7, 6)
 
 
 def test_chirp_sum_matches_direct_sum():
@@ -27,18 +29,20 @@ def test_chirp_sum_matches_direct_sum():
     np.testing.assert_allclose(_chirp_sum(c, ratio, j0, count), ref, rtol=0, atol=2e-14 * np.abs(ref).max())
 
 
+@pytest.mark.parametrize("grid", [GRID, ALIASED], ids=["plain", "aliased-ends"])
 @pytest.mark.parametrize("path", ["products", "chirp"])
 @pytest.mark.parametrize("speed", [0.0, 0.05, 40.0])
-def test_fast_kernels_match_direct_summation(speed, path, monkeypatch):
+def test_fast_kernels_match_direct_summation(speed, path, grid, monkeypatch):
     """Every block, steady rolling with inertia included, by both transforms (matrix
-    products on small grids, chirp-z beyond 128 nodes a side): 1e-14 relative to the
-    block (measured 0.8-1.8e-15 by products, 2.1-2.6e-15 by chirp-z: a margin of 4 or
-    more; the earlier 1e-12 was 400 times looser than the error)."""
+    products on small grids, chirp-z beyond 128 nodes a side), and with the end modes at
+    half weight: 1e-14 relative to the block (measured 0.8-1.8e-15 by products, 2.1-2.6e-15
+    by chirp-z: a margin of 4 or more; the earlier 1e-12 was 400 times looser than the
+    error)."""
     import bem.spectral
 
     monkeypatch.setattr(bem.spectral, "_MATMUL_NODES", 128 if path == "products" else 0)
-    fast = influence_kernels(GRID, VISCO, speed, blocks=BLOCKS)
-    direct = influence_kernels_direct(GRID, VISCO, speed, blocks=BLOCKS)
+    fast = influence_kernels(grid, VISCO, speed, blocks=BLOCKS)
+    direct = influence_kernels_direct(grid, VISCO, speed, blocks=BLOCKS)
     for b in BLOCKS:
         scale = np.abs(direct[b]).max()
         assert np.abs(fast[b] - direct[b]).max() <= 1e-14 * scale, b
@@ -182,9 +186,10 @@ THICK_VISCO = Layer(0.05, ThreeParameterSolid(G0=3.0e6, tau=0.25, f=1.0))
 THICK_ELASTIC = Layer(0.05, Elastic(3.0e6))
 
 
+@pytest.mark.parametrize("grid", [GRID, ALIASED], ids=["plain", "aliased-ends"])
 @pytest.mark.parametrize("path", ["products", "chirp"])
 @pytest.mark.parametrize("layer, speed", [(THICK_VISCO, 0.05), (THICK_ELASTIC, 0.0), (VISCO, 0.0)])
-def test_halfspace_split_matches_direct_summation(layer, speed, path, monkeypatch):
+def test_halfspace_split_matches_direct_summation(layer, speed, path, grid, monkeypatch):
     """Without inertia the kernels are the half-space modes' sum (real symbols, ``1 / G``
     per row, vv = 3 ww - uu) plus the exact-less-half-space symbols of the modes that see
     the base: every block against the paper's direct sum to 1e-14 of the block (measured
@@ -192,10 +197,44 @@ def test_halfspace_split_matches_direct_summation(layer, speed, path, monkeypatc
     import bem.spectral
 
     monkeypatch.setattr(bem.spectral, "_MATMUL_NODES", 128 if path == "products" else 0)
-    fast = influence_kernels(GRID, layer, speed, blocks=BLOCKS)
-    direct = influence_kernels_direct(GRID, layer, speed, blocks=BLOCKS)
+    fast = influence_kernels(grid, layer, speed, blocks=BLOCKS)
+    direct = influence_kernels_direct(grid, layer, speed, blocks=BLOCKS)
     for b in BLOCKS:
         assert np.abs(fast[b] - direct[b]).max() <= 1e-14 * np.abs(direct[b]).max(), b
+
+
+@pytest.mark.parametrize("truncation, spacing, period, end", [
+    (2000, 0.25e-3, 0.2, 0.5),  # 2 N_t a / L = 5 (the paper's section 11 grid)
+    (400, 0.5e-3, 0.4, 0.5),    # 1
+    (800, 0.25e-3, 0.2, 1.0),   # 2: even, sinc(N_t a / L) = 0 at the end modes already
+    (801, 0.25e-3, 0.2, 1.0),   # not an integer: no two kept modes alias exactly
+    (40, 0.7e-3, 0.02, 1.0),
+])
+def test_end_modes_that_alias_onto_nyquist_take_half_weight(truncation, spacing, period, end):
+    w = end_weights(truncation, spacing, period)
+    assert w.shape == (truncation + 1,)
+    assert w[-1] == end and np.all(w[:-1] == 1.0)
+
+
+@pytest.mark.parametrize("multiple, tail", [(1, 3e-4), (3, 2e-5)])
+def test_kernel_has_no_lasting_nyquist_term_along_y(multiple, tail):
+    """On nodes ``a`` apart the kernel's symbol is the alias sum over the kept modes
+    ``n = n0 (mod L / a)``. With N_t an odd multiple of L / (2 a) and the end modes at half
+    weight every lattice frequency takes the same number of modes; the truncation then
+    leaves a kink of the folded symbol at Nyquist, whose (-1)^dy term in the kernel decays
+    like dy^-2. Counting both end modes in full (a spike at Nyquist) left a term that does
+    not decay: (-1)^dy part of K(0, dy) over K(0, 0) 2.8-3.2e-3 (N_t = L / 2a) and
+    3.8-4.0e-4 (3 L / 2a) at dy = 10..18, growing with dy. Measured now at dy = 18: 2.2e-4 and
+    1.0e-5, a third of the value at dy = 10 (dy^-2: 0.31); gated at 1.5 and 2 times that,
+    and at 0.45 of dy = 10 (a decay faster than dy^-1.3)."""
+    a, L = 1e-3, 0.1
+    N = round(L / (2 * a))
+    grid = Grid(a, a, L, L, multiple * N, multiple * N, 41, 41)
+    col = influence_kernels(grid, Layer(0.02, Elastic(1e6)), 0.0)["ww"][grid.nodes_y - 1:, grid.nodes_x - 1]
+    j = np.arange(2, col.size - 2)  # dy; the binomial high pass keeps (-1)^dy with gain 1, cubics not at all
+    alt = (-1.0) ** j * (col[:-4] - 4 * col[1:-3] + 6 * col[2:-2] - 4 * col[3:-1] + col[4:]) / 16 / col[0]
+    assert abs(alt[j == 18][0]) < tail
+    assert abs(alt[j == 18][0]) < 0.45 * abs(alt[j == 10][0])
 
 
 def test_halfspace_symbols_are_the_layer_compliance_of_deep_modes():

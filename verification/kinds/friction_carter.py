@@ -93,6 +93,13 @@ def check(case: dict, path, methods: dict) -> None:
             raise CaseError(f"{where}: takes methods = [\"bem\"], against = \"analytic\" and no levels")
 
 
+def _truncation(period: float, spacing: float) -> int:
+    """``N_t = L / (2 a)`` (rounded up): with ``L`` a multiple of ``a`` its end modes alias onto
+    the lattice's Nyquist frequency at half weight (:func:`bem.spectral.end_weights`), so
+    every lattice frequency takes one mode; one mode more would double three of them."""
+    return math.ceil(period / (2 * spacing) - 1e-9)
+
+
 def _problem(case: dict):
     from bem.case import problem_from_config
 
@@ -101,8 +108,8 @@ def _problem(case: dict):
     length = cfg["indenter"]["length"]
     cfg["grid"] = {
         "spacing_x": s["spacing_x"], "spacing_y": s["spacing_y"], "period": s["period"],
-        "truncation_x": math.ceil(s["period"] / (2 * s["spacing_x"])) + 1,
-        "truncation_y": math.ceil(s["period"] / (2 * s["spacing_y"])) + 1,
+        "truncation_x": _truncation(s["period"], s["spacing_x"]),
+        "truncation_y": _truncation(s["period"], s["spacing_y"]),
         "half_width_x": s["half_width_x"], "half_width_y": length / 2 + s["spacing_y"],
     }
     return problem_from_config(cfg)[0]
@@ -118,7 +125,7 @@ def _plane_problem(case: dict):
     cfg = {"layer": {**pr["layer"], "thickness": depth}, "material": copy.deepcopy(pr["material"]),
            "indenter": {"shape": "line", "radius": pr["indenter"]["radius"]},
            "loading": {"speed": pr["loading"]["speed"], "load": pr["loading"]["load"] / pr["indenter"]["length"]},
-           "grid": {"spacing": ax, "period": depth, "truncation": math.ceil(depth / (2 * ax)) + 1,
+           "grid": {"spacing": ax, "period": depth, "truncation": _truncation(depth, ax),
                     "half_width": s["half_width_x"]}}
     return problem_from_config(cfg)[0]
 

@@ -126,7 +126,7 @@ def _bem_runs(cfg: dict, s: dict, H: float, ctx) -> list[dict]:
     for a in s["bem_spacings"]:
         c = copy.deepcopy(cfg)
         c["layer"]["thickness"] = H
-        c["grid"] = {"spacing": a, "period": s["period"], "truncation": math.ceil(s["period"] / (2 * a)) + 1,
+        c["grid"] = {"spacing": a, "period": s["period"], "truncation": math.ceil(s["period"] / (2 * a) - 1e-9),
                      "half_width": s["half_width"]}
         problem = problem_from_config(c)[0]
         for mode in s["loadings"]:

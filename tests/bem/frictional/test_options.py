@@ -110,8 +110,9 @@ def test_each_active_set_option_reaches_the_iteration(change):
 
 def test_the_local_row_options_reach_the_local_solves():
     """With local rows on every contact (``local_from`` 1), a window of 1 node takes
-    another path than the default 8 (Omega = 0.99 V / R, GMRES on both levels)."""
-    problem = Problem(LAYER, Sphere(0.02), GRID, Loading(0.05, load=20.0))
+    another path than the default 8 (Omega = 0.99 V / R, 25 N: local rows on the fine
+    level too, GMRES on both levels)."""
+    problem = Problem(LAYER, Sphere(0.02), GRID, Loading(0.05, load=25.0))
     friction = Friction(0.3, "omega", omega=0.99 * 0.05 / 0.02, dense_limit=0)
     lines = []
     wide, _ = solve_friction(problem, friction, energy=False, options=SolverOptions(local_from=1),

@@ -362,8 +362,8 @@ def test_a_coarse_level_ends_with_a_few_set_changes_left(big_kernels, friction, 
     """The coarse level ends at its first solve whose slip misfit is at most
     ``coarse_settle`` and whose sets change by at most ``settle_changes`` of its contact nodes
     (read from its progress lines); 0 waits for the sets to repeat. (With ``Omega = 0.98
-    V / R`` the 21 coarse contact nodes change by 8, 2, 0 at misfits 0.036, 0.19, 0.018:
-    3, 3, 2 and 1 solves for the four fractions.) The fine grid ends on the state it
+    V / R`` the 21 coarse contact nodes change by 8, 2, 2, 0 at misfits 0.036, 0.195, 0.019,
+    1e-4: 4, 4, 2 and 1 solves for the four fractions.) The fine grid ends on the state it
     reaches from the default."""
     lines = []
     res, _ = solve_friction(problem(grid=BIG), friction, kernels=big_kernels, energy=False, progress=lines.append,
@@ -375,7 +375,7 @@ def test_a_coarse_level_ends_with_a_few_set_changes_left(big_kernels, friction, 
             for m in steps]
     assert ends[-1] and not any(ends[:-1])
     if friction.omega == 0.98 * V / R:
-        assert len(steps) == {0.0: 3, 0.05: 3, 0.1: 2, 1.0: 1}[fraction]
+        assert len(steps) == {0.0: 4, 0.05: 4, 0.1: 2, 1.0: 1}[fraction]
     ref, _ = solve_friction(problem(grid=BIG), friction, kernels=big_kernels, energy=False,
                             options=SolverOptions(settle_changes=0.01))
     assert np.array_equal(res.stick, ref.stick) and np.array_equal(res.contact, ref.contact)
