@@ -81,7 +81,8 @@ def _parser() -> argparse.ArgumentParser:
                             "process (--quick: 1.1 GB with --workers 2, 0.7 GB serially). Progress: a line as "
                             "each case starts (naming its worker), its per-stage lines forwarded from the "
                             "worker (the lines of cases running together interleave), its verdict and time as "
-                            "it ends. The report is the serial run's but for its timings "
+                            "it ends. The report is the serial run's but for its timings and, where the "
+                            "serial run's BLAS ran several threads, the last digits "
                             "(default: one case after another in this process)")
     where.add_argument("--scheduler", metavar="ADDRESS|FILE.json",
                        help="the same on an existing Dask scheduler (tcp://HOST:PORT or a scheduler file), "
