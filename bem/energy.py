@@ -37,7 +37,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from scipy.signal import fftconvolve
+import scipy.fft as sfft
 
 from .grid import Grid
 from .layer import Layer, normal_compliance_outer, surface_compliance
@@ -140,14 +140,19 @@ def dissipation_from_tables(tables: dict, speed: float, force_z: np.ndarray, for
     if bad:
         raise ValueError(f"power tables of shape {bad} cannot serve forces on {F['w'].shape[1]} x "
                          f"{F['w'].shape[0]} nodes (a table of that grid has shape {need})")
+    ky, kx = F["w"].shape
+    shape = [sfft.next_fast_len(2 * k - 1 + k - 1, real=True) for k in (ky, kx)]
+    spectra = {c: sfft.rfft2(f, shape) for c, f in F.items() if f.any()}
     total = 0.0
-    for (p, q) in ((p, q) for p in "wuv" for q in "wuv"):
-        if not (F[p].any() and F[q].any()):
-            continue
-        if p + q not in tables:
-            raise ValueError(f"the power table {p + q} is needed for these forces but was not computed")
-        # contiguous: a table cut from a wider one (a view) gives the bits of its copy
-        total += float(np.sum(F[p] * fftconvolve(np.ascontiguousarray(tables[p + q]), F[q], mode="valid")))
+    for p in spectra:  # u_p = sum_q W_pq * F_q: one inverse transform per component
+        acc = 0
+        for q in spectra:
+            if p + q not in tables:
+                raise ValueError(f"the power table {p + q} is needed for these forces but was not computed")
+            # contiguous: a table cut from a wider one (a view) gives the bits of its copy
+            acc = acc + sfft.rfft2(np.ascontiguousarray(tables[p + q]), shape) * spectra[q]
+        u = sfft.irfft2(acc, shape)[ky - 1: 2 * ky - 1, kx - 1: 2 * kx - 1]  # the valid part: offsets of the grid
+        total += float(np.sum(F[p] * u))
     return -speed * total
 
 

@@ -37,7 +37,6 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.linalg import expm
 
 from ._checks import real
 
@@ -149,6 +148,8 @@ def surface_compliance_expm(nu_x, nu_y, G, rho_V2, H, max_kh=8.0):
     ndarray, shape (3, 3), complex
         Maps ``(sigma_z, tau_xz, tau_yz)`` (Pa) to ``(w, u, v)`` (m).
     """
+    from scipy.linalg import expm  # the reference route only: its import costs the solvers 0.17 s
+
     k = float(np.hypot(nu_x, nu_y))
     scale = max(k, abs(np.sqrt(complex(k * k - rho_V2 * nu_x**2 / complex(G)))))
     n_sub = max(1, int(np.ceil(scale * H / max_kh)))

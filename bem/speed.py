@@ -3,7 +3,7 @@ below its Rayleigh speed when it is lossless. Used by the 3D and the plane-strai
 
 from __future__ import annotations
 
-from scipy.optimize import brentq
+import numpy as np
 
 from .layer import Layer
 from .materials import Elastic
@@ -14,7 +14,9 @@ __all__ = ["RAYLEIGH_RATIO", "check_subsonic"]
 def _rayleigh_ratio() -> float:
     """``c_R / c_s`` of an incompressible solid: the root in (0, 1) of the Rayleigh equation
     ``(2 - xi^2)^4 = 16 (1 - xi^2)`` (Poisson's ratio 1/2), 0.9553."""
-    return brentq(lambda xi: (2 - xi * xi) ** 4 - 16 * (1 - xi * xi), 0.5, 1 - 1e-12, xtol=1e-15)
+    # with s = xi^2: (2 - s)^4 - 16 (1 - s) = s (s^3 - 8 s^2 + 24 s - 16), one real root in (0, 1)
+    s = [r.real for r in np.roots([1.0, -8.0, 24.0, -16.0]) if abs(r.imag) < 1e-12 and 0 < r.real < 1]
+    return float(np.sqrt(s[0]))
 
 
 RAYLEIGH_RATIO = _rayleigh_ratio()
