@@ -26,6 +26,7 @@ from pathlib import Path
 from bem.case import friction_from_config, problem_from_config
 
 from .cluster import connect
+from .grid_error import write_grid_error
 from .kernels import KernelCache, PointCache, group_points, form_kernels, kernel_key
 from .point import solve_point
 from .progress import Progress, duration
@@ -63,6 +64,7 @@ class RunReport:
     energy_seconds: float = 0.0
     overhead_seconds: float = 0.0
     table: str = ""
+    grid_error: str = ""
     errors: list = field(default_factory=list)
     notes: list = field(default_factory=list)
     rows: list = field(default_factory=list, repr=False)
@@ -244,9 +246,14 @@ def run_sweep(sweep: Sweep, out: str | Path, *, scheduler: str | None = None, wo
     report.overhead_seconds = max(0.0, report.wall_seconds * report.workers - report.kernel_seconds
                                   - report.point_seconds)
     report.rows = rows
+    written, why = write_grid_error(sweep, rows, out)
+    report.grid_error = str(written or "")
+    if why:
+        say(f"sweep {sweep.name}: no grid-error.csv: {why}")
     (out / SUMMARY).write_text(json.dumps({k: v for k, v in asdict(report).items() if k != "rows"}, indent=2))
     if stream is not None:
         stream.write(f"sweep {sweep.name}: {report.computed} computed, {report.resumed} resumed, {report.failed} failed; "
                      f"{report.kernels_formed} kernel set(s) formed, {report.kernels_from_cache} from the cache; "
-                     f"{duration(report.wall_seconds)} on {report.workers} worker(s); table {report.table}\n")
+                     f"{duration(report.wall_seconds)} on {report.workers} worker(s); table {report.table}"
+                     + (f"; grid error {report.grid_error}" if report.grid_error else "") + "\n")
     return report

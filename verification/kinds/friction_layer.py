@@ -68,25 +68,34 @@ def check(case: dict, path, methods: dict) -> None:
     if ("omega" in s["loadings"]) != ("creepage" in s):
         raise CaseError(f"{path} [friction_layer] creepage: given with loadings containing \"omega\" and only "
                         f"then, got loadings = {s['loadings']!r}, creepage = {s.get('creepage')!r}")
+    check_levels_and_gates(case, s, path, "friction_layer", QUANTITIES)
+    for i, gate in enumerate(case["gates"]):
+        if gate["quantity"] == "creepage" and set(s["loadings"]) == {"omega"}:
+            raise CaseError(f"{path} gates[{i}] (creepage): the creepage is given in every loading (\"omega\"); add "
+                            "\"pushed_at_top\" or \"towed\" to loadings, or remove the gate")
+
+
+def check_levels_and_gates(case: dict, s: dict, path, section: str, quantities) -> None:
+    """What a BEM-against-FEM frictional kind's case must say of its levels and gates:
+    ``bem_spacings`` and ``fem_element_sizes`` coarse to fine; each gate a known quantity at
+    the finest level, ``bem`` against ``fem``, or ``energy_balance`` of either method
+    against its energy figure. ``section``: the kind's section, ``[friction_layer]`` say."""
     for key in ("bem_spacings", "fem_element_sizes"):
         if list(s[key]) != sorted(s[key], reverse=True):
-            raise CaseError(f"{path} [friction_layer] {key}: coarse to fine (decreasing), got {s[key]!r}")
+            raise CaseError(f"{path} [{section}] {key}: coarse to fine (decreasing), got {s[key]!r}")
     for i, gate in enumerate(case["gates"]):
         where = f"{path} gates[{i}] ({gate['quantity']})"
         q = gate["quantity"]
-        if q not in QUANTITIES:
-            raise CaseError(f"{where}: unknown quantity {q!r}; known: {', '.join(QUANTITIES)}{close(q, QUANTITIES)}")
+        if q not in quantities:
+            raise CaseError(f"{where}: unknown quantity {q!r}; known: {', '.join(quantities)}{close(q, quantities)}")
         if "levels" in gate:
-            raise CaseError(f"{where}: 'levels' does not apply to a friction-layer case (the finest level is gated)")
+            raise CaseError(f"{where}: 'levels' does not apply to this kind (the finest level is gated)")
         if q == "energy_balance":
             ok = gate.get("against") == "energy" and gate.get("methods") and set(gate["methods"]) <= {"bem", "fem"}
             if not ok:
                 raise CaseError(f"{where}: takes against = \"energy\" and methods among \"bem\", \"fem\"")
         elif gate.get("methods") != ["bem"] or gate.get("against") != "fem":
             raise CaseError(f"{where}: takes methods = [\"bem\"] and against = \"fem\"")
-        if q == "creepage" and set(s["loadings"]) == {"omega"}:
-            raise CaseError(f"{where}: the creepage is given in every loading (\"omega\"); add \"pushed_at_top\" "
-                            "or \"towed\" to loadings, or remove the gate")
 
 def _fem_runs(cfg: dict, s: dict, H: float, ctx) -> list[dict]:
     from fem_reference.case import problem_from_dict

@@ -33,6 +33,7 @@ import time
 from ..formatting import fmt
 from ..results import CaseResult, Gate, Table
 from ..schema import CaseError, Field, check_table, close
+from .friction_layer import check_levels_and_gates
 
 ADDS_METHODS = False
 SECTIONS = ("friction_sphere",)
@@ -67,23 +68,7 @@ def check(case: dict, path, methods: dict) -> None:
         if k not in KINEMATICS:
             raise CaseError(f"{path} [friction_sphere] kinematics: {k!r} is not one the 3D FEM reference represents; "
                             f"give {' or '.join(KINEMATICS)}{close(k, KINEMATICS)}")
-    for key in ("bem_spacings", "fem_element_sizes"):
-        if list(s[key]) != sorted(s[key], reverse=True):
-            raise CaseError(f"{path} [friction_sphere] {key}: coarse to fine (decreasing), got {s[key]!r}")
-    for i, gate in enumerate(case["gates"]):
-        where = f"{path} gates[{i}] ({gate['quantity']})"
-        q = gate["quantity"]
-        if q not in QUANTITIES:
-            raise CaseError(f"{where}: unknown quantity {q!r}; known: {', '.join(QUANTITIES)}{close(q, QUANTITIES)}")
-        if "levels" in gate:
-            raise CaseError(f"{where}: 'levels' does not apply to a friction-sphere case (the finest level is gated)")
-        if q == "energy_balance":
-            ok = gate.get("against") == "energy" and gate.get("methods") and set(gate["methods"]) <= {"bem", "fem"}
-            if not ok:
-                raise CaseError(f"{where}: takes against = \"energy\" and methods among \"bem\", \"fem\"")
-        elif gate.get("methods") != ["bem"] or gate.get("against") != "fem":
-            raise CaseError(f"{where}: takes methods = [\"bem\"] and against = \"fem\"")
-
+    check_levels_and_gates(case, s, path, "friction_sphere", QUANTITIES)
 
 def _fem_runs(cfg: dict, s: dict, ctx) -> list[dict]:
     from fem_reference.case import problem_from_dict
