@@ -2,7 +2,9 @@
 
 Writes, in ``--out`` (default ``out/sweeps/<name>``): ``results.csv`` (one row per point,
 as they arrive), ``summary.json`` (counts and times), ``sweep.json`` (whose folder it is),
-``plot-<result>.png`` and ``fits.csv`` / ``fits.json``. Exit status: 0 every point
+``plot-<result>.png``, ``fits.csv`` / ``fits.json``, and ``grid-error.csv`` when an axis
+halves the node spacing (each figure's Richardson limit and grid error,
+:mod:`sweeps.grid_error`). Exit status: 0 every point
 solved, 1 some point failed (its row says why), 2 bad input (the sweep file, a point's
 case, more points than ``MAX_POINTS``, an unreachable scheduler, another sweep's folder
 without ``--overwrite``, a damaged table with ``--no-cache``), 130 interrupted (the

@@ -248,8 +248,10 @@ def run_sweep(sweep: Sweep, out: str | Path, *, scheduler: str | None = None, wo
     report.rows = rows
     written, why = write_grid_error(sweep, rows, out)
     report.grid_error = str(written or "")
-    if why:
-        say(f"sweep {sweep.name}: no grid-error.csv: {why}")
+    if why:  # a spacing axis that does not refine by 2
+        notes.append(f"sweep {sweep.name}: no grid-error.csv: {why}")
+        if stream is not None:
+            stream.write(notes[-1] + "\n")
     (out / SUMMARY).write_text(json.dumps({k: v for k, v in asdict(report).items() if k != "rows"}, indent=2))
     if stream is not None:
         stream.write(f"sweep {sweep.name}: {report.computed} computed, {report.resumed} resumed, {report.failed} failed; "
