@@ -114,8 +114,9 @@ class NormalContact(ContactFigures):
         does not know it.
     dissipation : float
         ``P_visc`` (W): the power the layer dissipates, summed in Fourier space from its
-        loss modulus (:func:`bem.energy.viscous_dissipation`), independently of the
-        nodal collocation and of the rolling arm; 0 at rest, ``nan`` when not computed.
+        loss modulus (:func:`bem.energy.viscous_dissipation`; by FFTs from the power
+        tables when the kernels carry them, :func:`bem.energy.layer_power`), independently
+        of the nodal collocation and of the rolling arm; 0 at rest, ``nan`` when not computed.
     pressure_power : float
         ``V sum F_i ds/dx(x_i)`` (W): the power the pressure puts into the layer, with
         the indenter's exact slope (a central difference of its profile over a thousandth

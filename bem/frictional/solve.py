@@ -42,7 +42,9 @@ def solve_friction(problem: Problem, friction: Friction, progress: Callable[[str
     state). Pass ``kernels`` (all nine blocks for this grid, layer and speed) to
     reuse them. With ``energy`` the result carries ``rolling_resistance_energy``
     ``= (P_visc + P_fric) / V`` (N), the layer's dissipation summed in Fourier space
-    (:func:`bem.energy.viscous_dissipation`, about 1.8 s at ``N_t = 2000``); otherwise it
+    (:func:`bem.energy.layer_power`: by FFTs from the power tables computed with the
+    kernels, milliseconds; by the mode sum of :func:`bem.energy.viscous_dissipation` when
+    given ``kernels`` lack them, about 2 s at ``N_t = 2000``); otherwise it
     is ``nan``. A plane-strain problem (a :class:`bem.plane.LineGrid`) takes the line
     kernels (:func:`bem.plane.line_kernels`) and :func:`bem.plane.line_dissipation`: every
     force per unit length (N/m, the energy figure too).
