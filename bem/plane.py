@@ -32,8 +32,9 @@ import numpy as np
 
 from ._checks import integer, real
 from .layer import Layer, compliance_blocks, normal_compliance_outer, surface_compliance
+from .mode_sums import chirp_sum
 from .result import NormalContact
-from .spectral import BLOCKS, chirp_sum, end_weights
+from .spectral import BLOCKS, end_weights
 
 __all__ = [
     "LINE_DENSE_LIMIT", "LineGrid", "LineContact", "line_mode_symbols", "line_kernel", "line_kernel_direct",

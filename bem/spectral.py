@@ -13,8 +13,8 @@ lattice frequency, the grid's Nyquist ``pi / a``, and each takes half its term
 (:func:`end_weights`; ``docs/derivations.md``, section 8, "End modes").
 :func:`influence_kernels` evaluates it for every offset of the grid at once: the mode
 symbols on the quarter ``m, n >= 0`` (reality ``g(-m, -n) = conj g(m, n)`` and parity in
-``n``), then two chirp-z (Bluestein) transforms, exact for any ``a / L``, at a cost of
-``O(N_t^2 log N_t)``. :func:`influence_kernels_direct` is the paper's route, summing every
+``n``), then two chirp-z (Bluestein) transforms (:mod:`bem.mode_sums`), exact for any
+``a / L``, at a cost of ``O(N_t^2 log N_t)``. :func:`influence_kernels_direct` is the paper's route, summing every
 term for two source nodes, kept as the slow reference.
 
 A kernel table ``K`` has shape ``(2 K_y - 1, 2 K_x - 1)``; ``K[dy + K_y - 1, dx + K_x - 1]``
@@ -25,16 +25,15 @@ traction sign of the paper (``sigma_z`` positive in tension, displacements posit
 
 from __future__ import annotations
 
-import functools
 import os
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 
 import numpy as np
-import scipy.fft as sfft
 
 from .grid import Grid
 from .layer import Layer, compliance_blocks, normal_compliance_outer, surface_compliance
+from .mode_sums import chirp_sum, over_m, over_n, turns
 
 __all__ = ["BLOCKS", "chirp_sum", "end_weights", "influence_kernels", "influence_kernels_direct", "kernels_with_power",
            "mode_symbols"]
@@ -155,13 +154,13 @@ def _kernels_streamed(grid: Grid, layer: Layer, speed: float, blocks: tuple, pow
         s = slice(start, min(start + _CHUNK, md.m.size))
         weight = np.outer(md.wx[s], md.wy)
         for b, sym in _symbol_rows(layer, md.nu_x[s], md.nu_y, md.G[s], rho_V2, weight, blocks).items():
-            H[b][s] = _over_n(sym, b in _ODD_IN_NY, md.ry, Ky, chirp)
+            H[b][s] = over_n(sym, b in _ODD_IN_NY, md.ry, Ky, chirp)
             if power:
-                Hp[b][s] = _over_n(sym, b in _ODD_IN_NY, md.ry, Ky, chirp, md.sy) * _power_rows(grid, md, s)
+                Hp[b][s] = over_n(sym, b in _ODD_IN_NY, md.ry, Ky, chirp, md.sy) * _power_rows(grid, md, s)
 
     _in_batches(md.m.size, work)
-    return ({b: _over_m(H.pop(b), md.rx, Kx, chirp) for b in blocks},
-            {b: _over_m(Hp.pop(b), md.rx, Kx, chirp) for b in blocks} if power else {})
+    return ({b: over_m(H.pop(b), md.rx, Kx, chirp) for b in blocks},
+            {b: over_m(Hp.pop(b), md.rx, Kx, chirp) for b in blocks} if power else {})
 
 
 def _power_rows(grid: Grid, md: "_Modes", s: slice) -> np.ndarray:
@@ -177,39 +176,8 @@ def _moduli(layer: Layer, nu_x: np.ndarray, speed: float) -> np.ndarray:
         return np.asarray(layer.material.modulus(-nu_x * speed), dtype=complex)
 
 
-def chirp_sum(c: np.ndarray, ratio: float, j0: int, count: int) -> np.ndarray:
-    """``sum_n c[..., n] exp(2 pi i ratio n j)`` for ``j = j0 .. j0 + count - 1``.
-
-    Bluestein's identity ``n j = (n^2 + j^2 - (j - n)^2) / 2`` turns the sum into a
-    convolution done by FFT; phases are reduced modulo one turn before use.
-    """
-    N = c.shape[-1]
-    n = np.arange(N, dtype=float)
-    t = np.arange(count, dtype=float)
-    lag = np.arange(-(N - 1), count, dtype=float)
-
-    def turn(x):
-        return np.exp(2j * np.pi * np.mod(ratio * x, 1.0))
-
-    size = sfft.next_fast_len(N + count - 1)
-    a = c * turn(n * j0 + n * n / 2)
-    b = np.zeros(size, dtype=complex)
-    chirp = turn(-lag * lag / 2)
-    b[:count] = chirp[N - 1 :]
-    b[size - (N - 1) :] = chirp[: N - 1]
-    conv = sfft.ifft(sfft.fft(a, size, axis=-1) * sfft.fft(b), axis=-1, workers=-1)
-    return conv[..., :count] * turn(t * t / 2)
-
-
 _MATMUL_NODES = 128  # up to this many nodes a side, trigonometric matrix products win
-
-
 _chirp_sum = chirp_sum  # the earlier private name
-
-
-def _turns(ratio: float, a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """Phase ``2 pi ratio a b`` reduced modulo a turn (``a b`` exact integers)."""
-    return 2 * np.pi * np.mod(ratio * np.outer(a, b).astype(float), 1.0)
 
 
 def _kernel_by_products(grid: Grid, sym: np.ndarray, odd: bool) -> np.ndarray:
@@ -217,7 +185,7 @@ def _kernel_by_products(grid: Grid, sym: np.ndarray, odd: bool) -> np.ndarray:
     g = grid
     Kx, Ky = g.nodes_x, g.nodes_y
     n = np.arange(sym.shape[1])
-    ph = _turns(g.spacing_y / g.period_y, n, np.arange(Ky))  # (n, dy >= 0)
+    ph = turns(g.spacing_y / g.period_y, n, np.arange(Ky))  # (n, dy >= 0)
     re, im = np.ascontiguousarray(sym.real), np.ascontiguousarray(sym.imag)
     if odd:  # sum_n g (e^{i..} - e^{-i..}) = 2 i sum_{n>0} g sin
         T = 2 * np.sin(ph)
@@ -231,7 +199,7 @@ def _kernel_by_products(grid: Grid, sym: np.ndarray, odd: bool) -> np.ndarray:
         h_re = np.concatenate([h_re[:, :0:-1], h_re], axis=1)
         h_im = np.concatenate([h_im[:, :0:-1], h_im], axis=1)
     m = np.arange(sym.shape[0])
-    phx = _turns(g.spacing_x / g.period_x, np.arange(-(Kx - 1), Kx), m)  # (dx, m)
+    phx = turns(g.spacing_x / g.period_x, np.arange(-(Kx - 1), Kx), m)  # (dx, m)
     wm = np.full(m.size, 2.0)
     wm[0] = 1.0
     K = (np.cos(phx) * wm) @ h_re - (np.sin(phx) * wm) @ h_im  # Re sum_m w h e^{i..}
@@ -283,57 +251,6 @@ def halfspace_symbols(nu_x: np.ndarray, nu_y: np.ndarray) -> dict:
     return {"ww": 0.5 * inv_k, "uu": (0.5 * nx * nx + ny * ny) * inv_k3, "uv": (-0.5 * nx) * ny * inv_k3}
 
 
-def _over_n(r: np.ndarray, odd: bool, ratio: float, count: int, chirp: bool,
-            weight_n: np.ndarray | None = None) -> np.ndarray:
-    """``h(m, dy) = sum_{|n| <= N_t} g(m, n) exp(2 pi i ratio n dy)`` for ``|dy| < count``
-    (complex, ``(rows, 2 count - 1)``) of ``g(m, n) = r(m, n) w(n)`` for ``n >= 0`` (``r``
-    real or complex, ``w`` the ``weight_n``, 1 without) and ``g(m, -n) = -g(m, n)``
-    (``odd``) or ``+g(m, n)``."""
-    if chirp:
-        r = r if weight_n is None else r * weight_n
-        coef = 2 * r.astype(complex)
-        coef[:, 0] = 0 if odd else r[:, 0]
-        S = chirp_sum(coef, ratio, -(count - 1), 2 * count - 1)
-        return 0.5 * (S - S[:, ::-1]) if odd else 0.5 * (S + S[:, ::-1])
-    T = _trig_table(ratio, r.shape[1], count, odd)
-    if weight_n is not None:
-        T = weight_n[:, None] * T
-    h = (r.real @ T + 1j * (r.imag @ T)) if np.iscomplexobj(r) else (r @ T).astype(complex)
-    if odd:
-        h = 1j * h
-        return np.concatenate([-h[:, :0:-1], h], axis=1)
-    return np.concatenate([h[:, :0:-1], h], axis=1)
-
-
-@functools.lru_cache(maxsize=8)
-def _trig_table(ratio: float, modes: int, count: int, odd: bool) -> np.ndarray:
-    """``2 sin`` (``odd``) or ``2 cos`` (first row 1) of the phases ``2 pi ratio n dy``,
-    ``0 <= n < modes``, ``0 <= dy < count``: the same table for every batch and block
-    (read-only)."""
-    ph = _turns(ratio, np.arange(modes), np.arange(count))
-    if odd:  # sum_n g (e^{i..} - e^{-i..}) = 2 i sum_{n>0} g sin
-        T = 2 * np.sin(ph)
-    else:
-        T = 2 * np.cos(ph)
-        T[0] = 1.0
-    T.flags.writeable = False
-    return T
-
-
-def _over_m(h: np.ndarray, ratio: float, count: int, chirp: bool) -> np.ndarray:
-    """``K(dy, dx) = Re sum_{|m| <= N_t} h(m, dy) exp(2 pi i ratio m dx)``, ``|dx| < count``,
-    from ``h`` on ``m >= 0`` (``h(-m) = conj h(m)``): real, ``(2 K_y - 1, 2 count - 1)``."""
-    m = np.arange(h.shape[0])
-    if chirp:
-        cm = 2 * h.T
-        cm[:, 0] = h[0]
-        return chirp_sum(cm, ratio, -(count - 1), 2 * count - 1).real
-    phx = _turns(ratio, np.arange(-(count - 1), count), m)  # (dx, m)
-    wm = np.full(m.size, 2.0)
-    wm[0] = 1.0
-    return ((np.cos(phx) * wm) @ h.real - (np.sin(phx) * wm) @ h.imag).T
-
-
 def _kernels_halfspace_split(grid: Grid, layer: Layer, speed: float, blocks: tuple, power: bool = False):
     """The kernels without inertia (``rho V^2 = 0``), split into the half-space modes'
     sum and a correction on the few modes that see the base (``k H <= HALFSPACE_KH``).
@@ -363,11 +280,11 @@ def _kernels_halfspace_split(grid: Grid, layer: Layer, speed: float, blocks: tup
         sym = halfspace_symbols(nu_x[s], nu_y)
         weight = np.outer(wx[s], wy)
         for k, b in H:
-            h = _over_n(sym[b] * weight, b in _ODD_IN_NY, ry, Ky, chirp, sy if k == "power" else None)
+            h = over_n(sym[b] * weight, b in _ODD_IN_NY, ry, Ky, chirp, sy if k == "power" else None)
             H[k, b][s] = h * inv_G[s, None] * (_power_rows(g, md, s) if k == "power" else 1.0)
 
     _in_batches(m.size, work)
-    half = {key: _over_m(H.pop(key), rx, Kx, chirp) for key in list(H)}
+    half = {key: over_m(H.pop(key), rx, Kx, chirp) for key in list(H)}
     for k in kinds:
         if "vv" in blocks:
             half[k, "vv"] = 3 * half[k, "ww"] - half[k, "uu"]
@@ -388,13 +305,13 @@ def _kernels_halfspace_split(grid: Grid, layer: Layer, speed: float, blocks: tup
         weight = np.outer(wx[s], wy[:My])
         for k, b in near:
             corr = exact[b] - hs[b] * inv_G[s, None] if b in hs else exact[b]
-            h = _over_n(corr * weight, b in _ODD_IN_NY, ry, Ky, False, sy[:My] if k == "power" else None)
+            h = over_n(corr * weight, b in _ODD_IN_NY, ry, Ky, False, sy[:My] if k == "power" else None)
             near[k, b][s] = h * _power_rows(g, md, s) if k == "power" else h
 
     _in_batches(Mx, correction)
     out = {k: {} for k in ("kernel", "power")}
     for k, b in list(near):
-        K = _over_m(near.pop((k, b)), rx, Kx, False)
+        K = over_m(near.pop((k, b)), rx, Kx, False)
         out[k][b] = K + half[k, b] if (k, b) in half else K
     return out["kernel"], out["power"]
 
