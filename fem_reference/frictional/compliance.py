@@ -79,8 +79,25 @@ def check_plane_strain(problem: ContactProblem) -> None:
             "solved by bem")
 
 
+class CompliancePairs:
+    """The two identities a condensed compliance ``matrix`` is checked by, given its
+    :meth:`mirror` (the image x -> -x of its nodes and components)."""
+
+    def reversal_defect(self) -> float:
+        """||C - P C^T P|| / ||C|| (Frobenius, -): 0 for the exact layer in the moving frame
+        (module docstring)."""
+        P = self.mirror()
+        C = self.matrix
+        return float(np.linalg.norm(C - P @ C.T @ P) / np.linalg.norm(C))
+
+    def asymmetry(self) -> float:
+        """||C - C^T|| / ||C|| (Frobenius, -): 0 for an elastic layer at V = 0."""
+        C = self.matrix
+        return float(np.linalg.norm(C - C.T) / np.linalg.norm(C))
+
+
 @dataclass
-class SurfaceCompliance:
+class SurfaceCompliance(CompliancePairs):
     """Condensed surface compliance of the rolling layer (module docstring).
 
     Attributes
@@ -130,18 +147,6 @@ class SurfaceCompliance:
             raise ValueError("the candidate nodes are not symmetric about x = 0: no mirror image")
         rev = np.eye(n)[::-1]
         return np.block([[-rev, np.zeros((n, n))], [np.zeros((n, n)), rev]])
-
-    def reversal_defect(self) -> float:
-        """||C - P C^T P|| / ||C|| (Frobenius, -): 0 for the exact layer (module
-        docstring)."""
-        P = self.mirror()
-        C = self.matrix
-        return float(np.linalg.norm(C - P @ C.T @ P) / np.linalg.norm(C))
-
-    def asymmetry(self) -> float:
-        """||C - C^T|| / ||C|| (Frobenius, -): 0 for the elastic layer at V = 0."""
-        C = self.matrix
-        return float(np.linalg.norm(C - C.T) / np.linalg.norm(C))
 
     def fields(self, Fx: np.ndarray, Fz: np.ndarray):
         """(u, p, w) of :meth:`StripSystem.split` under the nodal line loads ``Fx``,

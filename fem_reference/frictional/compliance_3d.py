@@ -48,13 +48,14 @@ import scipy.sparse as sp
 from skfem import BilinearForm, ElementTetP1, asm
 
 from ..errors import InputError
+from ..linsolve import PardisoSolver, pardiso_available
 from ..problem import ContactProblem
+from ..rolling import solve as rolling_solve
 from ..rolling.assembly import multiplier_coupling
 from ..rolling.forms import weighted
-from ..linsolve import PardisoSolver, pardiso_available
-from ..rolling import solve as rolling_solve
 from ..rolling.three_d.discretization import resolve_box
 from ..rolling.three_d.system import BoxSystem, build_box_system
+from .compliance import CompliancePairs
 
 __all__ = ["SurfaceCompliance3D", "surface_compliance_3d", "check_sphere"]
 
@@ -87,7 +88,7 @@ def check_sphere(problem: ContactProblem) -> None:
 
 
 @dataclass
-class SurfaceCompliance3D:
+class SurfaceCompliance3D(CompliancePairs):
     """Condensed surface compliance of the half layer (module docstring).
 
     Attributes
@@ -162,17 +163,6 @@ class SurfaceCompliance3D:
         Pn[np.arange(n), perm] = 1.0
         Z = np.zeros((n, n))
         return np.block([[-Pn, Z, Z], [Z, Pn, Z], [Z, Z, Pn]])
-
-    def reversal_defect(self) -> float:
-        """||C - P C^T P|| / ||C|| (Frobenius, -): 0 for the exact layer."""
-        P = self.mirror()
-        C = self.matrix
-        return float(np.linalg.norm(C - P @ C.T @ P) / np.linalg.norm(C))
-
-    def asymmetry(self) -> float:
-        """||C - C^T|| / ||C|| (Frobenius, -): 0 for an elastic layer."""
-        C = self.matrix
-        return float(np.linalg.norm(C - C.T) / np.linalg.norm(C))
 
     def fields(self, F: np.ndarray):
         """(u, p, w) of :meth:`BoxSystem.split` under the nodal forces ``F`` = [F_x; F_y;
