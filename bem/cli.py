@@ -73,11 +73,13 @@ def _write_outputs(args, friction, result, summary) -> list[str]:
         except OSError as exc:
             failed.append(f"--fields {fields} was not written: {exc}")
     if args.plot:
-        from .plots import plot_frictional_contact, plot_line_contact, plot_normal_contact
+        from .plots import plot_frictional_contact, plot_line_contact, plot_line_friction, plot_normal_contact
 
         plot = plot_normal_contact if friction is None else plot_frictional_contact
         if isinstance(result, LineContact):
             plot = plot_line_contact
+        elif friction is not None and getattr(result, "plane_strain", False):
+            plot = plot_line_friction
         try:
             plot(result, _partial(plot_path))
         except (OSError, ValueError) as exc:
@@ -158,8 +160,10 @@ def main(argv: list[str] | None = None) -> int:
                    help="override an entry of the case file (value parsed as TOML; a bare word for a "
                         "string key); repeatable; default: the file as written")
     s.add_argument("--json", action="store_true", help="print one JSON object (SI units) on stdout; default: text")
-    s.add_argument("--plot", type=Path, metavar="FILE.png", help="write the pressure map and y = 0 profile, or with friction the pressure "
-                   "map, tangential traction vectors and stick/slip map (PNG, PDF or SVG); default: no plot")
+    s.add_argument("--plot", type=Path, metavar="FILE.png",
+                   help="write the pressure map and y = 0 profile, or with friction the pressure map, tangential "
+                        "traction vectors and stick/slip map; a line contact: the profiles along x (with friction: "
+                        "pressure, traction, +-mu p, stick zone, slip velocity); PNG, PDF or SVG; default: no plot")
     s.add_argument("--fields", type=Path, metavar="FILE.npz",
                    help="save nodal coordinates and fields (NPZ); default: not saved")
     s.add_argument("--quiet", action="store_true", help="no progress lines on stderr")
@@ -204,10 +208,6 @@ def _run(args, signals: _Signals) -> int:
         config = read_case(args.case, args.set)
         problem, auto = problem_from_config(config)
         friction = friction_from_config(config)
-        if args.plot and friction is not None and problem.plane_strain:
-            raise ValueError(f"--plot {args.plot}: the frictional maps are drawn for a 3D contact only; for a "
-                             "line case ([indenter] shape = \"line\" with [friction]) write --fields FILE.npz "
-                             "and plot its x, pressure and force_x (N/m per node) arrays")
         if args.error_estimate is None:
             args.error_estimate = friction is not None
         if args.error_estimate and friction is None:

@@ -11,7 +11,7 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["plot_normal_contact", "plot_frictional_contact", "plot_line_contact"]
+__all__ = ["plot_normal_contact", "plot_frictional_contact", "plot_line_contact", "plot_line_friction"]
 
 
 def _save(fig, path, dpi: int) -> Path:
@@ -138,5 +138,41 @@ def plot_line_contact(result, path: str | Path, title: str = "") -> Path:
     fig.suptitle(title or (
         f"plane strain: P = {result.load:.4g} N/m, b = {result.half_width * 1e3:.4g} mm, "
         f"R_r = {result.rolling_resistance:.5g} N/m"
+    ))
+    return _save(fig, path, 120)
+
+
+def plot_line_friction(result, path: str | Path, title: str = "") -> Path:
+    """A frictional plane-strain contact (:class:`bem.frictional.FrictionalContact` on a
+    line grid) along ``x``: the pressure, the traction ``q = S_x / a`` on the layer with
+    the Coulomb bounds ``+-mu p``, the stick nodes shaded; below, the slip velocity over
+    ``V``. Returns the path."""
+    from matplotlib.figure import Figure
+
+    g = result.grid
+    x_mm = g.x * 1e3
+    p = result.pressure[0] / 1e6
+    q = result.traction_x[0] / 1e6
+    fig = Figure(figsize=(8, 6.4), layout="constrained")
+    ax0, ax1 = fig.subplots(2, 1, sharex=True, height_ratios=(2, 1))
+    ax0.plot(x_mm, p, "o-", ms=2, label="pressure p")
+    ax0.plot(x_mm, q, "s-", ms=2, label="traction q on the layer")
+    ax0.plot(x_mm, result.mu * p, ":", color="0.4", lw=1, label="+-mu p (Coulomb)")
+    ax0.plot(x_mm, -result.mu * p, ":", color="0.4", lw=1)
+    ax0.set_ylabel("MPa")
+    ax1.plot(x_mm, result.slip_x[0] / result.speed, "-", color="C3")
+    ax1.set_ylabel("slip velocity / V (-)")
+    ax1.set_xlabel("x (mm), direction of motion ->")
+    stick = result.stick[0]
+    half = g.spacing * 1e3 / 2
+    for ax in (ax0, ax1):
+        for xs in x_mm[stick]:
+            ax.axvspan(xs - half, xs + half, color="C2", alpha=0.12, lw=0)
+        ax.grid(alpha=0.3)
+    ax0.plot([], [], color="C2", alpha=0.3, lw=6, label="stick")
+    ax0.legend(fontsize=8)
+    fig.suptitle(title or (
+        f"plane strain with friction (mu = {result.mu:g}, {result.mode}): P = {result.load:.4g} N/m\n"
+        f"R_r = {result.rolling_resistance:.5g} N/m, of which friction {result.rolling_resistance_friction:.3g} N/m"
     ))
     return _save(fig, path, 120)

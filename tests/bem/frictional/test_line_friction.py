@@ -259,16 +259,18 @@ def test_grid_error_estimate_on_a_line(visco):
 # --- the command line ------------------------------------------------------------------
 
 
-def test_cli_solves_a_line_case_with_friction(capsys):
-    code = main(["solve", EXAMPLE, "--quiet", "--set", "friction.mu=0.5", "--set", 'friction.mode="towed"'])
+def test_cli_solves_a_line_case_with_friction(capsys, tmp_path):
+    png = tmp_path / "line-friction.png"
+    code = main(["solve", EXAMPLE, "--quiet", "--set", "friction.mu=0.5", "--set", 'friction.mode="towed"',
+                 "--plot", str(png)])
     out = capsys.readouterr().out
     assert code == 0
     assert "plane strain" in out and "driving force" in out and " N/m" in out and "N m/m" in out
     assert "half-width" in out and "contact radius" not in out
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and png.stat().st_size > 10_000
 
 
 @pytest.mark.parametrize("args, message", [
-    (["--set", "friction.mu=0.5", "--plot", "x.png"], "--plot x.png: the frictional maps"),
     (["--set", "friction.mu=0.5", "--set", 'friction.mode="omega"'], "omega"),
     (["--set", "friction.mu=0.5", "--set", "friction.radius=0.03"], "[friction] radius"),
 ])
