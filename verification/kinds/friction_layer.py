@@ -177,19 +177,31 @@ def run(case: dict, ctx) -> CaseResult:
         rows += _bem_runs(cfg, s, H, ctx) + _fem_runs(cfg, s, H, ctx)
     finest = {(r["H"], r["mode"], r["method"]): r for r in rows
               if r["level"] == min(s["bem_spacings"] if r["method"] == "bem" else s["fem_element_sizes"])}
-    pairs = [(finest[(H, m, "bem")], finest[(H, m, "fem")]) for H in s["thicknesses"] for m in s["loadings"]]
-    compared = [(b, f, errors(b, f, s["mu"])) for b, f in pairs]
+    runs = [(H, m) for H in s["thicknesses"] for m in s["loadings"]]
+    compared = [(finest[(*r, "bem")], finest[(*r, "fem")]) for r in runs]
+    compared = [(b, f, errors(b, f, s["mu"])) for b, f in compared]
     key = {"rolling_resistance": "Rr", "rolling_resistance_friction": "RrF", "driving_force": "Q", "creepage": "xi",
            "stick_edge": "stick"}
-    for spec in case["gates"]:
+    bem_fem_gates(result, case["gates"], finest, runs, compared, key, "energy (P_visc' + P_fric') / V")
+    result.extra["friction_layer"] = rows
+    result.seconds = time.perf_counter() - t0
+    return result
+
+
+def bem_fem_gates(result: CaseResult, specs, finest: dict, runs, compared, key: dict, energy_against: str) -> None:
+    """Append one gate per spec to ``result``, each the worst over ``runs`` (the ``(case
+    parameter, loading)`` pairs of the ``finest`` levels, keyed ``(parameter, loading,
+    method)``): ``energy_balance`` of each named method, ``R_r`` against its energy figure
+    ``E``; any other quantity, the BEM against the FEM over ``compared`` (``(bem, fem,
+    errors)`` triples; ``key`` names each quantity's row field), NaN where none applies."""
+    for spec in specs:
         q = spec["quantity"]
         common = dict(case=result.name, quantity=q, level="finest", tolerance=float(spec["tolerance"]),
                       reason=spec["reason"], report_only=bool(spec.get("report_only", False)))
         if q == "energy_balance":
             for method in spec["methods"]:
-                runs = [finest[(H, m, method)] for H in s["thicknesses"] for m in s["loadings"]]
-                worst = max(runs, key=lambda r: abs(r["Rr"] - r["E"]) / abs(r["Rr"]))
-                result.gates.append(Gate(method=method, against="energy (P_visc' + P_fric') / V", value=worst["Rr"],
+                worst = max((finest[(*r, method)] for r in runs), key=lambda r: abs(r["Rr"] - r["E"]) / abs(r["Rr"]))
+                result.gates.append(Gate(method=method, against=energy_against, value=worst["Rr"],
                                          reference=worst["E"], error=abs(worst["Rr"] - worst["E"]) / abs(worst["Rr"]),
                                          **common))
             continue
@@ -201,9 +213,7 @@ def run(case: dict, ctx) -> CaseResult:
         b, f, e = max(valid, key=lambda c: c[2][q])
         result.gates.append(Gate(method="bem", against="fem", value=b[key[q]], reference=f[key[q]], error=e[q],
                                  **common))
-    result.extra["friction_layer"] = rows
-    result.seconds = time.perf_counter() - t0
-    return result
+
 
 def tables(result: CaseResult) -> list[Table]:
     rows = tuple((fmt(r["H"] * 1e3), r["mode"], r["method"], fmt(r["level"] * 1e6), fmt(r["Rr"]), fmt(r["E"]),

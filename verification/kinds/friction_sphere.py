@@ -31,9 +31,9 @@ import math
 import time
 
 from ..formatting import fmt
-from ..results import CaseResult, Gate, Table
+from ..results import CaseResult, Table
 from ..schema import CaseError, Field, check_table, close
-from .friction_layer import check_levels_and_gates
+from .friction_layer import bem_fem_gates, check_levels_and_gates
 
 ADDS_METHODS = False
 SECTIONS = ("friction_sphere",)
@@ -146,21 +146,7 @@ def run(case: dict, ctx) -> CaseResult:
     compared = [(finest[(k, m, "bem")], finest[(k, m, "fem")]) for k, m in runs]
     compared = [(b, f, errors(b, f)) for b, f in compared]
     key = {"rolling_resistance": "Rr", "rolling_resistance_friction": "RrF", "stick_fraction": "stick"}
-    for spec in case["gates"]:
-        q = spec["quantity"]
-        common = dict(case=result.name, quantity=q, level="finest", tolerance=float(spec["tolerance"]),
-                      reason=spec["reason"], report_only=bool(spec.get("report_only", False)))
-        if q == "energy_balance":
-            for method in spec["methods"]:
-                worst = max((finest[(k, m, method)] for k, m in runs),
-                            key=lambda r: abs(r["Rr"] - r["E"]) / abs(r["Rr"]))
-                result.gates.append(Gate(method=method, against="energy (P_visc + P_fric) / V", value=worst["Rr"],
-                                         reference=worst["E"], error=abs(worst["Rr"] - worst["E"]) / abs(worst["Rr"]),
-                                         **common))
-            continue
-        b, f, e = max(compared, key=lambda c: c[2][q])
-        result.gates.append(Gate(method="bem", against="fem", value=b[key[q]], reference=f[key[q]], error=e[q],
-                                 **common))
+    bem_fem_gates(result, case["gates"], finest, runs, compared, key, "energy (P_visc + P_fric) / V")
     result.extra["friction_sphere"] = rows
     result.seconds = time.perf_counter() - t0
     return result
