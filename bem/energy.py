@@ -37,7 +37,7 @@ from __future__ import annotations
 
 import numpy as np
 
-import scipy.fft as sfft
+from . import fft as sfft
 
 from .grid import Grid
 from .layer import Layer, normal_compliance_outer, surface_compliance

@@ -13,7 +13,7 @@ from __future__ import annotations
 import functools
 
 import numpy as np
-import scipy.fft as sfft
+from . import fft as sfft
 
 __all__ = ["chirp_sum", "turns", "over_n", "over_m"]
 

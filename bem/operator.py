@@ -34,7 +34,7 @@ from contextlib import contextmanager
 from dataclasses import dataclass
 
 import numpy as np
-import scipy.fft as sfft
+from . import fft as sfft
 
 from .grid import Grid
 

@@ -6,7 +6,7 @@ from __future__ import annotations
 from dataclasses import replace
 
 import numpy as np
-import scipy.fft as sfft
+from .. import fft as sfft
 
 from ..grid import Grid
 from ..kinematics import upwind_table
@@ -92,12 +92,12 @@ class RollingOperators:
             spectra = np.stack([np.stack([sign * self.op(name).spectrum for sign, name in row]) for row in names])
             spectra = self._stacked[key] = spectra.astype(np.complex64 if f.dtype == np.float32 else np.complex128,
                                                           copy=False)
-        with sfft.set_workers(self._workers()):
-            F = self._forward(f)
-            acc = spectra[:, 0] * F[0]
-            acc += spectra[:, 1] * F[1]
-            acc += spectra[:, 2] * F[2]
-            return self._inverse(acc)
+        workers = self._workers()
+        F = self._forward(f, workers)
+        acc = spectra[:, 0] * F[0]
+        acc += spectra[:, 1] * F[1]
+        acc += spectra[:, 2] * F[2]
+        return self._inverse(acc, workers)
 
     def _workers(self) -> int:
         """Threads of the transforms (:func:`bem.operator.fft_workers` of the embedding)."""
@@ -106,13 +106,13 @@ class RollingOperators:
     # the 2-D transforms one axis at a time, skipping the embedding's zero rows on the way
     # in and the rows off the grid on the way out (40-55 % less work than rfft2), on the
     # callers' threads
-    def _forward(self, f):
+    def _forward(self, f, workers):
         emb = self.op("ww").embedding
-        return sfft.fft(sfft.rfft(f, n=emb[1]), n=emb[0], axis=-2, overwrite_x=True)
+        return sfft.fft(sfft.rfft(f, emb[1], workers=workers), emb[0], -2, workers=workers)
 
-    def _inverse(self, F):
+    def _inverse(self, F, workers):
         emb = self.op("ww").embedding
-        return sfft.irfft(sfft.ifft(F, axis=-2, overwrite_x=True)[:, :self.grid.nodes_y], n=emb[1])
+        return sfft.irfft(sfft.ifft(F, None, -2, workers=workers)[:, :self.grid.nodes_y], emb[1], workers=workers)
 
     def row_filter(self, power: float, dtype=np.complex128, *, long: float | None = None,
                    waves: float = SolverOptions.filter_waves) -> np.ndarray:
@@ -132,7 +132,7 @@ class RollingOperators:
             Ey, width = self.op("ww").embedding
             q = power
             if long is not None:
-                n = np.hypot(sfft.rfftfreq(width)[None, :] * Kx, sfft.fftfreq(Ey)[:, None] * Ky)
+                n = np.hypot(np.fft.rfftfreq(width)[None, :] * Kx, np.fft.fftfreq(Ey)[:, None] * Ky)
                 q = power + (long - power) * np.exp(-(n / waves) ** 2)
             out = []
             for name in ("ww", "uu", "vv"):
@@ -173,10 +173,10 @@ class RollingOperators:
         :meth:`row_filter`), read back at ``nodes``; in single precision when ``spectra``
         is ``complex64``."""
         real = np.float32 if spectra.dtype == np.complex64 else np.float64
-        with sfft.set_workers(self._workers()):
-            F = self._forward(self._scatter(nodes, values, real))
-            F *= spectra
-            return self._gather(self._inverse(F), nodes)
+        workers = self._workers()
+        F = self._forward(self._scatter(nodes, values, real), workers)
+        F *= spectra
+        return self._gather(self._inverse(F, workers), nodes)
 
     def _scatter(self, nodes, values, dtype=np.float64):
         """``values`` ``(3, k)`` at the flat grid indices ``nodes``, 0 elsewhere, in rows as

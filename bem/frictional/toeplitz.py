@@ -20,7 +20,7 @@ import os
 from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
-import scipy.fft as sfft
+from .. import fft as sfft
 
 from .options import SolverOptions
 
