@@ -11,7 +11,7 @@ import numpy as np
 
 from ..errors import InputError
 
-__all__ = ["MODES", "KINEMATICS", "RollingFriction", "FrictionalRollingResult", "RollingEnergy"]
+__all__ = ["MODES", "KINEMATICS", "RollingFriction", "FrictionalRollingResult", "RollingScalars"]
 
 #: loading modes: the row that closes the cylinder's equilibrium
 MODES = ("omega", "force", "towed", "pushed_at_top")
@@ -84,10 +84,32 @@ class RollingFriction:
             raise InputError(f"friction.max_iterations must be an integer >= 1, got {self.max_iterations!r}")
 
 
-class RollingEnergy:
-    """R_r^F, the energy figure and the balance of a frictional rolling result with
-    ``rolling_resistance``, ``friction_power``, ``dissipation`` and ``speed`` (per unit
-    length in plane strain: N/m, W/m; totals in 3D: N, W)."""
+@dataclass(frozen=True, kw_only=True)
+class RollingScalars:
+    """The scalars of a frictional rolling result, plane strain or 3D (per unit length in
+    plane strain: N/m, W/m, N m/m; totals in 3D: N, W, N m), and R_r^F, the energy figure and
+    the balance from them: ``speed`` V (m/s), ``radius`` R (m), ``mu``, ``mode``,
+    ``kinematics``, ``load``, ``indentation`` (m), ``omega`` (rad/s), ``creepage`` (-),
+    ``driving_force``, ``torque``, ``rolling_resistance``, ``friction_power``,
+    ``dissipation``, ``iterations`` and ``times`` (s per phase); keyword-only, after the
+    nodal arrays of the result classes."""
+
+    speed: float
+    radius: float
+    mu: float
+    mode: str
+    kinematics: str
+    load: float
+    indentation: float
+    omega: float
+    creepage: float
+    driving_force: float
+    torque: float
+    rolling_resistance: float
+    friction_power: float
+    dissipation: float
+    iterations: int
+    times: dict
 
     @property
     def rolling_resistance_friction(self) -> float:
@@ -106,7 +128,7 @@ class RollingEnergy:
 
 
 @dataclass(frozen=True)
-class FrictionalRollingResult(RollingEnergy):
+class FrictionalRollingResult(RollingScalars):
     """Steady frictional rolling of a rigid cylinder on the FEM layer, per unit length.
 
     Nodal arrays on the candidate nodes (x increasing): ``normal`` N_i (N/m,
@@ -135,22 +157,6 @@ class FrictionalRollingResult(RollingEnergy):
     contact: np.ndarray
     stick: np.ndarray
     slip: np.ndarray
-    speed: float
-    radius: float
-    mu: float
-    mode: str
-    kinematics: str
-    load: float
-    indentation: float
-    omega: float
-    creepage: float
-    driving_force: float
-    torque: float
-    rolling_resistance: float
-    friction_power: float
-    dissipation: float
-    iterations: int
-    times: dict
 
     @property
     def tangential_force(self) -> float:

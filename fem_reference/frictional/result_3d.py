@@ -8,13 +8,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .model import RollingEnergy
+from .model import RollingScalars
 
 __all__ = ["FrictionalSphereResult"]
 
 
 @dataclass(frozen=True)
-class FrictionalSphereResult(RollingEnergy):
+class FrictionalSphereResult(RollingScalars):
     """Steady frictional rolling of a rigid sphere on the layer.
 
     Nodal arrays on the candidate nodes of the half layer y >= 0 (``xy``, m; ``weights``
@@ -30,7 +30,7 @@ class FrictionalSphereResult(RollingEnergy):
     ``rolling_resistance`` R_r = Q + T Omega / V (N, paper eq. 1), ``friction_power`` sum S
     . w over the slip nodes (W), ``dissipation`` the dashpots' power from the FEM fields
     (W); ``rolling_resistance_friction``, ``rolling_resistance_energy`` (N) and
-    ``energy_balance`` (-) from :class:`~.model.RollingEnergy`.
+    ``energy_balance`` (-) from :class:`~.model.RollingScalars`.
     """
 
     xy: np.ndarray
@@ -42,22 +42,6 @@ class FrictionalSphereResult(RollingEnergy):
     contact: np.ndarray
     stick: np.ndarray
     slip: np.ndarray
-    speed: float
-    radius: float
-    mu: float
-    mode: str
-    kinematics: str
-    load: float
-    indentation: float
-    omega: float
-    creepage: float
-    driving_force: float
-    torque: float
-    rolling_resistance: float
-    friction_power: float
-    dissipation: float
-    iterations: int
-    times: dict
 
     @property
     def contact_area(self) -> float:
