@@ -22,3 +22,20 @@ against = "analytic"
 tolerance = 0.01
 reason = "the coarse grid: 0.4 % measured"
 """
+
+
+def assert_refused(kind: str, case: dict, edits, path="case.toml") -> None:
+    """Each ``(edit, message)`` of ``edits``: ``edit`` applied to a copy of ``case`` makes
+    the kind's check raise :class:`verification.schema.CaseError` matching ``message``."""
+    import copy
+
+    import pytest
+
+    from verification.kinds import KINDS
+    from verification.schema import CaseError
+
+    for edit, message in edits:
+        bad = copy.deepcopy(case)
+        edit(bad)
+        with pytest.raises(CaseError, match=message):
+            KINDS[kind].check(bad, path, {})

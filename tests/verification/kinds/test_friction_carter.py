@@ -1,14 +1,12 @@
 """The ``friction-carter`` kind: the case runs and passes its gates, and bad cases are
 refused before anything is solved."""
 
-import copy
 from pathlib import Path
 
 import pytest
 
-from verification.kinds import KINDS
+from tests.verification.small_cases import assert_refused
 from verification.runner import load_case, run_case
-from verification.schema import CaseError
 
 CASE = Path(__file__).resolve().parents[3] / "verification" / "cases" / "friction-carter-2d.toml"
 
@@ -25,21 +23,10 @@ def test_case_passes_its_gates_over_the_creepages():
 
 
 def test_bad_cases_are_refused():
-    case = load_case(CASE)
-    kind = KINDS["friction-carter"]
-    bad = copy.deepcopy(case)
-    bad["gates"][0]["quantity"] = "creep_forse"
-    with pytest.raises(CaseError, match="unknown quantity 'creep_forse'"):
-        kind.check(bad, "case.toml", {})
-    bad = copy.deepcopy(case)
-    bad["carter"]["creepages"] = [0.1, -0.2]
-    with pytest.raises(CaseError, match=r"creepages: each must be > 0 .* got -0.2"):
-        kind.check(bad, "case.toml", {})
-    bad = copy.deepcopy(case)
-    bad["problem"]["material"] = {"model": "three_parameter", "G0": 3e6, "tau": 0.25, "f": 1.0}
-    with pytest.raises(CaseError, match="material model = \"elastic\""):
-        kind.check(bad, "case.toml", {})
-    bad = copy.deepcopy(case)
-    del bad["carter"]["plane_depth"]
-    with pytest.raises(CaseError, match="plane_spacing_x: plane_spacing_x and plane_depth go together"):
-        kind.check(bad, "case.toml", {})
+    assert_refused("friction-carter", load_case(CASE), [
+        (lambda c: c["gates"][0].update(quantity="creep_forse"), "unknown quantity 'creep_forse'"),
+        (lambda c: c["carter"].update(creepages=[0.1, -0.2]), r"creepages: each must be > 0 .* got -0.2"),
+        (lambda c: c["problem"].update(material={"model": "three_parameter", "G0": 3e6, "tau": 0.25, "f": 1.0}),
+         "material model = \"elastic\""),
+        (lambda c: c["carter"].pop("plane_depth"), "plane_spacing_x: plane_spacing_x and plane_depth go together"),
+    ])

@@ -1,23 +1,19 @@
 """The ``friction-layer`` kind: bad cases are refused before anything is solved, a coarse
 copy of the case runs end to end, and (slow) the case passes its gates."""
 
-import copy
 import math
 from pathlib import Path
 
 import pytest
 
-from verification.kinds import KINDS
+from tests.verification.small_cases import assert_refused
 from verification.runner import load_case, run_case
-from verification.schema import CaseError
 
 CASE = Path(__file__).resolve().parents[3] / "verification" / "cases" / "friction-layer-2d.toml"
 
 
 def test_bad_cases_are_refused():
-    case = load_case(CASE)
-    kind = KINDS["friction-layer"]
-    for edit, message in [
+    assert_refused("friction-layer", load_case(CASE), [
         (lambda c: c["gates"][0].update(quantity="rolling_resistanse"), "unknown quantity 'rolling_resistanse'"),
         (lambda c: c["gates"][0].update(against="analytic"), r"methods = \[\"bem\"\] and against = \"fem\""),
         (lambda c: c["gates"][-1].update(against="fem"), "against = \"energy\""),
@@ -27,11 +23,7 @@ def test_bad_cases_are_refused():
         (lambda c: c["friction_layer"].update(mu=-0.3), "mu"),
         (lambda c: c["problem"]["indenter"].update(shape="sphere"), "shape = \"line\""),
         (lambda c: c["friction_layer"].update(spacing=1e-4), "spacing"),
-    ]:
-        bad = copy.deepcopy(case)
-        edit(bad)
-        with pytest.raises(CaseError, match=message):
-            kind.check(bad, "case.toml", {})
+    ])
 
 
 def test_a_coarse_copy_runs_end_to_end():

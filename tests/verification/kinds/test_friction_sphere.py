@@ -1,23 +1,19 @@
 """The ``friction-sphere`` kind: bad cases are refused before anything is solved, a coarse
 copy of the case runs end to end, and (slow) the case passes its gates."""
 
-import copy
 import math
 from pathlib import Path
 
 import pytest
 
-from verification.kinds import KINDS
+from tests.verification.small_cases import assert_refused
 from verification.runner import load_case, run_case
-from verification.schema import CaseError
 
 CASE = Path(__file__).resolve().parents[3] / "verification" / "cases" / "friction-sphere-3d.toml"
 
 
 def test_bad_cases_are_refused():
-    case = load_case(CASE)
-    kind = KINDS["friction-sphere"]
-    for edit, message in [
+    assert_refused("friction-sphere", load_case(CASE), [
         (lambda c: c["friction_sphere"].update(kinematics=["paper"]),
          "kinematics: 'paper' is not one the 3D FEM reference represents; give small_slope or exact"),
         (lambda c: c["problem"]["indenter"].update(shape="paraboloid"),
@@ -31,11 +27,7 @@ def test_bad_cases_are_refused():
         (lambda c: c["friction_sphere"].update(fem_element_sizes=[5e-4, 1e-3]), "fem_element_sizes: coarse to fine"),
         (lambda c: c["friction_sphere"].update(mu=0.0), "mu"),
         (lambda c: c.pop("friction_sphere"), r"needs a \[friction_sphere\] section"),
-    ]:
-        bad = copy.deepcopy(case)
-        edit(bad)
-        with pytest.raises(CaseError, match=message):
-            kind.check(bad, "case.toml", {})
+    ])
 
 
 def test_a_coarse_copy_runs_end_to_end():

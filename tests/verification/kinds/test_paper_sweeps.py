@@ -1,7 +1,6 @@
 """The ``paper-sweeps`` kind: its gates, from sweep tables drawn from the paper's own laws
 (the sweeps themselves are replaced, so nothing is solved), and bad cases refused."""
 
-import copy
 from pathlib import Path
 from types import SimpleNamespace
 
@@ -9,9 +8,8 @@ import numpy as np
 import pytest
 
 from sweeps.paper import TABLE2, TABLE3, paper_fit
-from verification.kinds import KINDS
+from tests.verification.small_cases import assert_refused
 from verification.runner import load_case, run_case
-from verification.schema import CaseError
 
 CASE = Path(__file__).resolve().parents[3] / "verification" / "cases" / "paper-sweeps.toml"
 HS = np.array([1, 2, 3, 5, 7, 10, 15, 30]) * 1e-3
@@ -52,13 +50,7 @@ def test_share_rise_is_gated_from_the_thickness_sweep(monkeypatch):
 
 
 def test_bad_cases_are_refused():
-    case = load_case(CASE)
-    kind = KINDS["paper-sweeps"]
-    bad = copy.deepcopy(case)
-    bad["gates"][-1]["quantity"] = "share_raise"
-    with pytest.raises(CaseError, match="unknown quantity 'share_raise'.*share_rise"):
-        kind.check(bad, CASE, {})
-    bad = copy.deepcopy(case)
-    bad["sweeps"]["thickness"] = "no-such-sweep.toml"
-    with pytest.raises(CaseError, match=r"\[sweeps\] thickness: no sweep file"):
-        kind.check(bad, CASE, {})
+    assert_refused("paper-sweeps", load_case(CASE), [
+        (lambda c: c["gates"][-1].update(quantity="share_raise"), "unknown quantity 'share_raise'.*share_rise"),
+        (lambda c: c["sweeps"].update(thickness="no-such-sweep.toml"), r"\[sweeps\] thickness: no sweep file"),
+    ], path=CASE)
