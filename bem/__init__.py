@@ -27,7 +27,8 @@ prepared operators :func:`bem.contact.solve_normal`), its results (:mod:`bem.res
 plane strain (:mod:`bem.plane`), the layer's dissipation (:mod:`bem.energy`), the
 frictional solver (:mod:`bem.frictional`, on prepared operators
 :func:`bem.frictional.solve_rolling`) and the driver (:mod:`bem.driver`). Both contact
-solvers' linear solves go through :class:`bem.linear.LinearSolver`.
+solvers' linear solves go through :class:`bem.linear.LinearSolver`, their transforms
+through :mod:`bem.fft` (numpy.fft on one thread, scipy.fft on more).
 """
 
 import importlib
