@@ -9,12 +9,16 @@ Solver: the primal-dual active-set method (Hintermueller, Ito and Kunisch 2002),
 Kalker's active-set contact algorithm: on a trial contact set ``A`` solve the linear
 problem ``C_AA F_A - d 1 = -s_A`` (with ``1^T F_A = P``), then drop nodes in tension and
 add penetrating ones, until the set repeats. The first set is the contact of the same
-problem on every other node (recursively), or on small grids every reachable node under
-load control and the geometric overlap ``{s < d}`` under displacement control (with
+problem on the coarse level (recursively, :func:`~bem.coarse_levels.coarse_level`: every
+other node along an odd-sized axis, the middle of each pair of nodes along an even-sized
+one), whose forces, interpolated, start the first solve; on small grids every reachable
+node under load control and the geometric overlap ``{s < d}`` under displacement control (with
 ``d`` prescribed, all reachable nodes would ask for upward displacements of up to the
 profile's height, i.e. tension, on most of them). It needs no symmetry of ``C`` (steady
 rolling makes it non-symmetric) and ends with the exact complementarity solution of the
-discrete problem. Linear solves are dense LU on small sets (and on sets of up to
+discrete problem. Steps on GMRES are solved loosely while the set still changes much
+(:data:`LOOSE_RTOL`), the converged set always to ``rtol``. Linear solves are dense LU
+on small sets (and on sets of up to
 :data:`DENSE_FALLBACK` nodes where GMRES fails) and restarted GMRES with the FFT operator
 otherwise (the flexible, right-preconditioned :func:`bem.linear.fgmres`,
 which minimises the true residual and orthogonalises by matrix products: 1.2-1.7x
@@ -30,17 +34,33 @@ Why the wrapped circulant. The inverse of the zero-padded embedding that applies
 has eigenvalues near zero and below it (the kernel cut off at the table's border; see
 :mod:`bem.operator`), worst for a viscoelastic kernel, whose long tail along the rolling
 direction makes the cut larger: on the standard linear solid's half-space
-(``benchmarks/bem_viscoelastic_rolling.py``, 155 x 155 nodes) the fine grid took 223
-GMRES iterations against 79 for the elastic layer on the same grid. The wrapped circulant
-(the kernel at its true values on a period of about ``2 K``; the compliance of the layer
-made periodic) takes 67 against 48, the preconditioned spectra of the converged sets alike (real parts
-0.96-2.85 viscoelastic, 1.00-2.56 elastic, 77 x 77). What remains is the contact's
-Schur complement: the whole grid's inverse restricted to the set does no better (14
-against 11 from zero on the converged 77 x 77 sets, the wrapped circulant 15 and 11);
-exact solves on the runs of each grid row with the row filter ``(C_row / C)`` after them
-(``bem.frictional.preconditioner``'s form) gave 12 and 11, but the runs' dense inverses
-cost 26 ms CPU a set at 155 x 155 (113 runs of up to 100 nodes), the price of 28 GMRES
-iterations (0.95 ms each, product and preconditioner), to save about three.
+(``benchmarks/bem_viscoelastic_rolling.py``, 155 x 155 nodes, every step solved to 1e-11)
+the fine grid took 223 GMRES iterations against 79 for the elastic layer on the same
+grid. The wrapped circulant (the kernel at its true values on a period of about ``2 K``;
+the compliance of the layer made periodic) takes 67 against 48, the preconditioned
+spectra of the converged sets alike (real parts 0.96-2.85 viscoelastic, 1.00-2.56
+elastic, 77 x 77). What remains is the contact's Schur complement: the whole grid's
+inverse restricted to the set does no better (14 against 11 from zero on the converged
+77 x 77 sets, the wrapped circulant 15 and 11); exact solves on the runs of each grid row
+with the row filter ``(C_row / C)`` after them (``bem.frictional.preconditioner``'s form)
+gave 12 and 11, but the runs' dense inverses cost 26 ms CPU a set at 155 x 155 (113 runs
+of up to 100 nodes), the price of 28 GMRES iterations (0.95 ms each, product and
+preconditioner), to save about three. The viscoelastic solve's extra iterations are then
+spent chiefly on the digits of the intermediate sets, which :data:`LOOSE_RTOL` no longer
+asks for. GMRES iterations, fine grid / all levels, viscoelastic against elastic (one
+BLAS thread): 155 x 155 67 / 151 against 48 / 91 (1.40 / 1.66) -> 25 / 65 against 21 /
+47 (1.19 / 1.38); 77 x 77 53 / 105 against 39 / 73 (1.36 / 1.44) -> 23 / 44 against 18
+/ 36 (1.28 / 1.22); solve time viscoelastic / elastic 0.94 and 1.07; each solve takes
+0.55-0.70 of its time with every step tight, no guess from the coarse forces and no
+coarse level of even-sized grids (CPU, median of 7 pairs, on a loaded machine). At 155
+x 155 the viscoelastic contact, the smaller, has a 20 x 20 level (6 iterations) where
+the elastic one reaches that grid's edge and starts its 39 x 39 level from every
+reachable node (the failed level's iterations are in no record). In steps, at 155 x 155
+(elastic / viscoelastic, fine grid): the loose steps 46 -> 21 and 64 -> 25; the coarse
+forces as the first guess 22 -> 21 and 28 -> 25 (with every step tight 48 -> 46, 67 ->
+64); on the even-sized 78 x 78 level, a coarse level of its own (39 x 39, instead of
+every reachable node as the first set) and its set widened along odd-sized axes only,
+22 -> 12 and 37 -> 17 there.
 
 A penetrating node joins the next set only if it penetrates under the compressive forces
 alone (:func:`_lifted`, one product on the grid when a step both drops and adds): a tensile
@@ -67,9 +87,8 @@ import math
 from typing import Callable
 
 import numpy as np
-from scipy.ndimage import binary_dilation
 
-from .grid import Grid
+from .coarse_levels import coarse_grid, coarse_kernel, coarse_level, dilated, prolonged, restricted, upsampled
 from .linear import LinearSolver, bordered, eliminate
 from .operator import ComplianceOperator
 from .result import SHARED_SCALARS, ContactFigures, NormalContact, SolveRecord, grid_summary, pressure_centroid_x
@@ -78,7 +97,8 @@ from .result import SHARED_SCALARS, ContactFigures, NormalContact, SolveRecord, 
 __all__ = [
     "ContactError", "ContactNotConverged", "ContactAtEdge", "SolveRecord", "ContactFigures", "NormalContact",
     "solve_normal", "grid_summary", "pressure_centroid_x", "SHARED_SCALARS", "NormalSystem", "coarse_grid",
-    "edge_nodes", "coarse_solution", "DENSE_LIMIT", "DENSE_FALLBACK",
+    "edge_nodes", "coarse_solution", "coarse_level", "prolonged", "dilated", "DENSE_LIMIT", "DENSE_FALLBACK",
+    "LOOSE_RTOL",
 ]
 
 
@@ -215,50 +235,57 @@ DENSE_LIMIT = 300
 DENSE_FALLBACK = 4000
 
 
-def coarse_grid(grid: Grid) -> Grid | None:
-    """Every other node of ``grid`` (same period and truncation), or ``None`` when the grid
-    is small (< 625 nodes, or < 9 a side) or even-sized: the coarse level of the solvers'
-    multilevel starts."""
-    Ky, Kx = grid.shape
-    if Kx * Ky < 625 or Kx % 2 == 0 or Ky % 2 == 0 or min(Kx, Ky) < 9:
-        return None
-    return Grid(2 * grid.spacing_x, 2 * grid.spacing_y, grid.period_x, grid.period_y,
-                grid.truncation_x, grid.truncation_y, (Kx + 1) // 2, (Ky + 1) // 2)
+#: an active-set step on GMRES is solved to ``min(LOOSE_RTOL, c^2)`` of ``|b|`` (``rtol``
+#: when that is not looser), ``c`` the share of the set's nodes that the step before
+#: dropped or added (1 for the first): early sets change by hundreds of nodes and need the
+#: forces' signs, not eleven digits. A set that such a solve leaves unchanged is solved
+#: again to ``rtol`` (from there) before it is accepted, and every later step to ``rtol``,
+#: so the converged set is the one of tight solves throughout (it is unique, see the module
+#: docstring). A loose solve gets one restart cycle (100 iterations; 3-5 on the benchmark
+#: below): one that needs more has a set whose spectrum the preconditioner misses, and
+#: goes to dense LU at once (``DENSE_FALLBACK``; above it, GMRES to ``rtol``) instead of
+#: after a failed tight run of 10 000 iterations. Measured
+#: (``benchmarks/bem_viscoelastic_rolling.py``, GMRES on the fine grid, viscoelastic /
+#: elastic, 155 x 155): every step to 1e-11 64 / 46; a constant loose tolerance
+#: (without the ``c^2``) of 1e-3 made the sets cycle (the viscoelastic solve at 155 x 155
+#: failed in one-node updates; a cycle among loose steps now switches to tight solves),
+#: 1e-4 32 / 25 (a loose cycle at 155 x 155), 1e-5 37 / 28, 1e-6 35 / 26; ``min(1e-4,
+#: c^2)`` 25 / 21
+LOOSE_RTOL = 1e-4
 
 
 def coarse_solution(operator: ComplianceOperator, profile: np.ndarray, *, load: float | None = None,
                     indentation: float | None = None, dense_limit: int = DENSE_LIMIT,
                     rtol: float = 1e-11) -> NormalContact | None:
-    """:func:`solve_normal` of the same problem on every other node (:func:`coarse_grid`;
-    the kernel table read at even offsets, the exact compliance between those nodes), or
-    ``None`` when the grid has no coarse level, the indentation reaches no coarse node or
-    the coarse solve fails."""
+    """:func:`solve_normal` of the same problem on :func:`coarse_level`'s nodes (the kernel
+    table read at even offsets, the exact compliance between those nodes; the profile
+    there, or the mean of a pair's along an even-sized axis), or ``None`` when the grid
+    has no coarse level, the indentation reaches no coarse node or the coarse solve fails."""
     grid = operator.grid
-    coarse = coarse_grid(grid)
+    coarse = coarse_level(grid)
     if coarse is None:
         return None
-    prof = np.asarray(profile, dtype=float).reshape(grid.shape)[::2, ::2]
+    prof = restricted(np.asarray(profile, dtype=float).reshape(grid.shape))
     if indentation is not None and not (prof < indentation).any():
         return None
     try:
-        return solve_normal(ComplianceOperator(coarse, operator.kernel[::2, ::2]), prof, load=load,
+        return solve_normal(ComplianceOperator(coarse, coarse_kernel(operator.kernel)), prof, load=load,
                             indentation=indentation, dense_limit=dense_limit, rtol=rtol)
     except ContactError:
         return None
 
 
 def _coarse_start(operator, s, reachable, load, indentation, dense_limit, rtol, known=None):
-    """Trial contact set from the same problem on every other node (recursively,
-    :func:`coarse_solution`; ``known``: that solution when already solved).
+    """Trial contact set from the same problem on :func:`coarse_level`'s nodes
+    (recursively, :func:`coarse_solution`; ``known``: that solution when already solved).
 
-    Its contact set, upsampled and widened by one node, starts the active set on the full
-    grid, which then needs a few iterations instead of tens. Returns the start set and the
-    coarse solution, or ``(None, None)`` when the grid is small (< 625 nodes) or
-    even-sized, or the coarse solve fails.
+    Its contact set, upsampled (:func:`~bem.coarse_levels.upsampled`) and widened by one
+    node along the odd-sized axes, starts the active set on the full grid, which then needs
+    a few iterations instead of tens. Returns the start set and the coarse solution, or
+    ``(None, None)`` when the grid is small (< 625 nodes) or the coarse solve fails.
     """
     grid = operator.grid
-    Ky, Kx = grid.shape
-    coarse = coarse_grid(grid)
+    coarse = coarse_level(grid)
     if coarse is None:
         return None, None
     res = known if known is not None and known.grid.shape == coarse.shape else coarse_solution(
@@ -266,10 +293,11 @@ def _coarse_start(operator, s, reachable, load, indentation, dense_limit, rtol, 
         rtol=rtol)
     if res is None:
         return None, None
-    up = np.zeros((Ky, Kx), dtype=bool)
-    up[::2, ::2] = res.contact
-    grown = binary_dilation(up, structure=np.ones((3, 3), dtype=bool))  # fill and widen
-    return grown.ravel() & reachable, res
+    # widened by one node along the odd-sized axes; along an even-sized one each coarse node
+    # already covers both nodes of its pair, half a fine spacing beyond it (widening there
+    # too cost 3 / 2 more GMRES iterations on the 78 x 78 level of the 155 x 155 benchmark)
+    odd = tuple(axis for axis, n in enumerate(grid.shape) if n % 2)
+    return dilated(upsampled(res.contact, grid.shape), odd).ravel() & reachable, res
 
 
 def _lifted(operator: ComplianceOperator, F: np.ndarray, drop: np.ndarray, base: np.ndarray,
@@ -320,13 +348,14 @@ def solve_normal(
         :data:`DENSE_LIMIT`), and by dense LU after GMRES fails on them up to
         :data:`DENSE_FALLBACK` nodes; 0: GMRES on every set, never dense LU.
     rtol : float
-        GMRES relative tolerance.
+        GMRES relative tolerance (-, of ``|b|``) of the converged set's solve; the steps
+        before it ask at most :data:`LOOSE_RTOL`.
     progress : callable, optional
         Called with one line per active-set iteration.
     coarse : NormalContact, optional
-        The same problem already solved on every other node (:func:`coarse_grid`): its
-        contact starts the active set instead of a new coarse solve (ignored when its grid
-        is not that one).
+        The same problem already solved on the coarse level
+        (:func:`~bem.coarse_levels.coarse_level`): its contact and forces start the active
+        set instead of a new coarse solve (ignored when its grid is not that one).
 
     Raises
     ------
@@ -366,11 +395,29 @@ def solve_normal(
     careful = False
     history = []
     guess = np.zeros(active.sum() + 1)
+    if start is not None and active is start:
+        # the coarse forces, prolonged (a nodal force is the pressure times the node's area, a
+        # quarter of a coarse node's), and the coarse indentation start the first solve
+        guess = np.concatenate([prolonged(coarse.force, grid.shape).ravel()[active] / 4, [coarse.indentation]])
+    tight = False  # every solve to rtol from here on (see LOOSE_RTOL)
+    changed = 1.0  # share of the set's nodes that the last step dropped or added
     for it in range(1, max_iter + 1):
         idx = np.flatnonzero(active)
         system = NormalSystem(operator, idx, s[idx], load, indentation)
-        fA, d = system.split(solve(system, guess[:system.n], what=f"{idx.size} contact nodes",
-                                   hint="refine less, or raise dense_limit if memory allows"))
+        step_rtol = min(LOOSE_RTOL, changed ** 2)
+        exact = tight or step_rtol <= rtol or solve.dense_for(system.n)
+        step_rtol = rtol if exact else step_rtol
+        try:  # a loose step gets one restart cycle: more means the preconditioner misses the set
+            x = solve(system, guess[:system.n], rtol=step_rtol, maxiter=None if exact else 1,
+                      what=f"{idx.size} contact nodes", hint="refine less, or raise dense_limit if memory allows")
+        except ContactNotConverged:
+            if exact:
+                raise
+            tight = exact = True  # a set beyond DENSE_FALLBACK: GMRES to rtol, every cycle
+            x = solve(system, guess[:system.n], what=f"{idx.size} contact nodes",
+                      hint="refine less, or raise dense_limit if memory allows")
+        fA, d = system.split(x)
+        exact = exact or solve.dense_for(system.n)  # a GMRES failure solved by dense LU
         F = np.zeros_like(s)
         F[idx] = fA
         u = operator.apply(F.reshape(grid.shape)).ravel()
@@ -386,7 +433,11 @@ def solve_normal(
         if progress:
             progress(f"active set {it}: {idx.size} nodes, d = {d:.6e} m, -{int(drop.sum())} +{int(add.sum())}")
         if not drop.any() and not add.any():
-            break
+            if exact:
+                break
+            tight = True  # a set that a loose solve leaves unchanged is confirmed by a tight one
+            guess = np.concatenate([fA, [d]])
+            continue
         if careful:  # one node at a time, the worst first
             new = active.copy()
             if drop.any():
@@ -395,12 +446,16 @@ def solve_normal(
                 new[np.argmin(np.where(add, h, np.inf))] = True
         else:
             new = (active & ~drop) | add
+        changed = (int(drop.sum()) + int(add.sum())) / idx.size
         if not new.any() and load is None:
             # every force came out tensile (only possible with d prescribed): restart from the
             # deepest node, which alone carries (d - s) / C_ii > 0 (s < d there, checked above)
             new[np.argmin(np.where(reachable, s, np.inf))] = True
         key = np.packbits(new).tobytes()
-        if key in seen:
+        if key in seen and not exact:  # a loose solve's misjudged node: tight solves from here on
+            tight = True
+            seen.clear()
+        elif key in seen:
             if careful:
                 raise ContactNotConverged(f"the active set cycles after {it} iterations even with one-node updates")
             careful = True

@@ -251,20 +251,25 @@ class LinearSolver:
         self.floor = floor
         self.iterations, self.used_gmres = 0, False
 
+    def dense_for(self, n: int) -> bool:
+        """Whether a system of ``n`` unknowns goes to dense LU (exact whatever ``rtol``)."""
+        return n <= self.dense_limit or bool(self.fallbacks and n <= self.dense_fallback)
+
     def __call__(self, system, guess: np.ndarray | None = None, *, rtol: float | None = None, what: str = "",
-                 hint: str = "", of_b: bool = False) -> np.ndarray:
+                 hint: str = "", of_b: bool = False, maxiter: int | None = None) -> np.ndarray:
         """Solve ``system`` (``guess`` starts GMRES; ``rtol`` overrides the solver's for
         this call; with ``of_b`` it is relative to ``|b|`` even with ``correction``: a
-        guess from elsewhere, whose residual says little of the accuracy needed); returns
-        the solution vector. ``what`` names the system and ``hint`` says what to change,
-        in error messages."""
+        guess from elsewhere, whose residual says little of the accuracy needed;
+        ``maxiter`` overrides the number of restarts); returns the solution vector.
+        ``what`` names the system and ``hint`` says what to change, in error messages."""
         rtol = self.rtol if rtol is None else rtol
         n = system.n
-        if n <= self.dense_limit or (self.fallbacks and n <= self.dense_fallback):
+        if self.dense_for(n):
             return self._dense(system, what)
         self.used_gmres = True
         try:
-            return self._fgmres(system, getattr(system, "precondition", None), guess, rtol, what, hint, of_b)
+            return self._fgmres(system, getattr(system, "precondition", None), guess, rtol, what, hint, of_b,
+                                self.maxiter if maxiter is None else maxiter)
         except self.error:
             if n > self.dense_fallback:
                 raise
@@ -278,9 +283,11 @@ class LinearSolver:
         except np.linalg.LinAlgError as exc:
             raise self.error(f"singular system ({what or f'{system.n} unknowns'}): {exc}") from exc
 
-    def _fgmres(self, system, prec, guess, rtol, what, hint, of_b=False):
+    def _fgmres(self, system, prec, guess, rtol, what, hint, of_b=False, maxiter=None):
         """:func:`fgmres` on the correction to ``guess`` (or from zero), the residual
-        reduced by ``rtol`` (``of_b``: to ``rtol |b|``)."""
+        reduced by ``rtol`` (``of_b``: to ``rtol |b|``), in ``maxiter`` restarts (default
+        the solver's)."""
+        maxiter = self.maxiter if maxiter is None else maxiter
         n = system.n
         x0 = np.zeros(n) if guess is None else np.asarray(guess, float)
         residual = getattr(system, "residual", None)  # b - A x, when the system has it
@@ -299,7 +306,7 @@ class LinearSolver:
             # residual); in double from the residual left only if a phase fails
             while not done:
                 goal = max(tol, self.single_start * float(np.linalg.norm(b)))
-                dx, ok, its = fgmres(system.matvec, b, prec, tol=goal, restart=self.restart, maxiter=self.maxiter,
+                dx, ok, its = fgmres(system.matvec, b, prec, tol=goal, restart=self.restart, maxiter=maxiter,
                                      inner=single, basis=np.float32)
                 self.iterations += its
                 if not ok:
@@ -309,7 +316,7 @@ class LinearSolver:
                 if not done:
                     b = b - system.matvec(dx)
         if not done:
-            dx, ok, its = fgmres(system.matvec, b, prec, tol=tol, restart=self.restart, maxiter=self.maxiter,
+            dx, ok, its = fgmres(system.matvec, b, prec, tol=tol, restart=self.restart, maxiter=maxiter,
                                  inner=inner, basis=np.float64 if inner is None else np.float32)
             x += dx
             self.iterations += its

@@ -106,8 +106,9 @@ class NormalContact(ContactFigures):
         ``R_r = sum F_i arm_i`` (N), the paper's ``sum F_i x_i / R`` for round indenters.
     record : SolveRecord
     coarse : NormalContact or None
-        The same problem solved on every other node (:func:`bem.contact.coarse_grid`),
-        whose contact set started this solve; ``None`` when there was none. The
+        The same problem solved on the coarse level (every other node, or the middle of
+        each pair along an even-sized axis: :func:`bem.coarse_levels.coarse_level`),
+        whose contact set and forces started this solve; ``None`` when there was none. The
         frictional solver's own coarse levels reuse it instead of solving it again.
     speed : float
         ``V`` (m/s) of the indenter; ``nan`` for a solve on a prepared operator, which

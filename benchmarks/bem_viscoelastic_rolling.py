@@ -15,7 +15,9 @@ solve_normal` with its multilevel start; wall and CPU seconds, the median of ``-
 solves, the two materials alternated), its active-set iterations, the GMRES iterations on
 the fine grid and on all levels together, the contact nodes, the indentation and the
 rolling resistance ``R_r = sum F x / R`` (N; > 0 with the contact shifted to the
-leading edge, ``x > 0``); the ratios viscoelastic / elastic of the
+leading edge, ``x > 0``; a coarse level whose contact reaches its grid's edge is dropped
+by the solver and its iterations are not counted: the elastic contact on the 20 x 20
+level below 155 x 155); the ratios viscoelastic / elastic of the
 GMRES iterations (deterministic) and of the solve times (the median of the pairs' ratios,
 each pair run back to back). CPU time counts every thread (the transforms of an embedding
 of 100 000 points or more run on both cores, :data:`bem.operator.THREADED_FROM`).

@@ -9,7 +9,7 @@ replaced by one that fails.
 import numpy as np
 import pytest
 
-from bem.contact import ContactAtEdge, ContactNotConverged, NormalSystem, solve_normal
+from bem.contact import LOOSE_RTOL, ContactAtEdge, ContactNotConverged, NormalSystem, solve_normal
 from bem.grid import Grid
 from bem.indenters import Sphere
 from bem.operator import ComplianceOperator
@@ -149,9 +149,11 @@ def test_a_tiny_force_on_the_edge_node_is_contact_at_the_edge():
 
 def test_gmres_that_fails_says_what_to_change(rolling_small, monkeypatch):
     """The flexible GMRES (as bem.linear calls it) replaced by one that reports failure
-    after 7 iterations: the error names the set and what to change; the solver asks for
-    the residual ``rtol |b|`` of the bordered system, with restart and maxiter 100 and 100
-    and the circulant preconditioner, its Krylov vectors in double."""
+    after 7 iterations: the error names the set and what to change. The solver asks the
+    first set (every reachable node: no coarse level below 625 nodes) for the residual
+    ``LOOSE_RTOL |b|`` of the bordered system in one restart cycle (a loose first step),
+    then, that failing (no dense fallback with ``dense_limit=0``), ``rtol |b|`` with restart
+    and maxiter 100 and 100; the circulant preconditioner, its Krylov vectors in double."""
     import bem.linear as linear
 
     calls = []
@@ -169,5 +171,6 @@ def test_gmres_that_fails_says_what_to_change(rolling_small, monkeypatch):
     m = int(str(info.value).split(" on ")[1].split()[0])
     assert str(info.value) == (f"GMRES did not reduce the residual by 1.0e-09 on {m} contact nodes in 7 "
                                "iterations; refine less, or raise dense_limit if memory allows")
-    assert len(calls) == 1
-    assert calls[0][0] == pytest.approx(1e-9, rel=1e-12) and calls[0][1:] == (100, 100, True, None, np.float64)
+    assert len(calls) == 2 and m == SMALL.nodes_x * SMALL.nodes_y
+    assert calls[0][0] == pytest.approx(LOOSE_RTOL, rel=1e-12) and calls[0][1:] == (100, 1, True, None, np.float64)
+    assert calls[1][0] == pytest.approx(1e-9, rel=1e-12) and calls[1][1:] == (100, 100, True, None, np.float64)

@@ -1,4 +1,9 @@
-"""bem.fft: NumPy's transforms on one thread, SciPy's on more, the same numbers either way."""
+"""bem.fft: NumPy's transforms on one thread, SciPy's on more, the same numbers either way,
+and a small solve that never imports scipy.fft (its import is a third of a small run)."""
+
+import subprocess
+import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -7,6 +12,7 @@ import scipy.fft
 from bem import fft
 
 RNG = np.random.default_rng(7)
+CASE = Path(__file__).resolve().parents[2] / "examples" / "elastic-paraboloid-creepage.toml"
 
 
 def test_next_fast_len_is_scipys_rule():
@@ -35,3 +41,13 @@ def test_transforms_equal_scipys(workers, dtype):
         assert ours.dtype == theirs.dtype
         assert np.abs(ours - theirs).max() <= tol * np.abs(theirs).max()
 
+
+def test_a_small_frictional_solve_does_not_import_scipy_fft():
+    code = ("import sys\n"
+            "from bem.cli import main\n"
+            f"assert main(['solve', {str(CASE)!r}, '--quiet', "
+            "'--no-error-estimate', '--set', 'grid.spacing=0.4e-3', '--set', 'grid.truncation=750']) == 0\n"
+            "print(sorted(m for m in ('scipy.fft', 'scipy.ndimage', 'scipy.special', 'scipy.sparse') "
+            "if m in sys.modules))\n")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    assert out.splitlines()[-1] == "[]"

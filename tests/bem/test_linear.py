@@ -190,6 +190,27 @@ def test_a_call_may_ask_its_own_tolerance():
     assert 1e-12 * np.linalg.norm(b) < np.linalg.norm(b - A @ x) <= 1e-2 * np.linalg.norm(b)
 
 
+def test_a_call_may_ask_its_own_number_of_restarts():
+    """A system that needs about 20 iterations, restarted every 5: one cycle is not
+    enough (the caller's error; with a dense fallback, dense LU instead), the solver's 50
+    are."""
+    A, b = _near_identity(n=60, eps=0.6, seed=8)
+
+    class Failed(Exception):
+        pass
+
+    solver = LinearSolver(0, 1e-10, restart=5, maxiter=50, error=Failed)
+    with pytest.raises(Failed):
+        solver(Dense(A, b), maxiter=1)
+    assert solver.iterations == 5
+    x = solver(Dense(A, b))
+    assert solver.iterations > 15 and np.linalg.norm(b - A @ x) <= 1e-10 * np.linalg.norm(b)
+    fallback = LinearSolver(0, 1e-10, restart=5, maxiter=50, error=Failed, dense_fallback=60)
+    x = fallback(Dense(A, b), maxiter=1)
+    assert fallback.fallbacks == 1 and fallback.iterations == 5
+    np.testing.assert_allclose(x, np.linalg.solve(A, b), rtol=0, atol=1e-12 * np.abs(x).max())
+
+
 def test_a_singular_dense_system_raises_the_callers_error_naming_it():
     class Failed(RuntimeError):
         pass

@@ -76,11 +76,12 @@ def test_solve_normal_ends_on_the_dense_state_when_every_gmres_fails(rolling_sma
 @pytest.mark.slow
 def test_a_sphere_on_a_thick_lagging_layer_ends_on_the_dense_state():
     """A sphere (R = 20 mm, 59 N, 2.7 m/s) on a 10 mm three-parameter solid (G0 = 0.53 MPa,
-    f = 85, tau = 3.2 ms), 97 x 97 nodes of 0.25 mm: GMRES with the wrapped circulant fails
-    on the first fine set (1267 nodes, 10000 iterations); the dense fallback ends on the
-    state of dense LU on every set. Measured: 11 sets, 5.3 s (0.55 s all dense); the same
-    sets and forces; smallest force 1.3e-3 of the largest, smallest gap off the set
-    1.0e-5 d."""
+    f = 85, tau = 3.2 ms), 97 x 97 nodes of 0.25 mm: GMRES with the wrapped circulant does
+    not reach the first fine set's loose tolerance (1267 nodes) in its one restart cycle
+    (100 iterations; to 1e-11 it fails after 10000); the dense fallback ends on the state
+    of dense LU on every set. Measured: 11 sets, 0.46 s CPU (0.55 s all dense, 3.5 s after a
+    failed tight run); the same sets and forces; smallest force 1.3e-3 of the largest,
+    smallest gap off the set 1.0e-5 d."""
     grid = Grid.centred((2.5e-4, 2.5e-4), (0.1, 0.1), (200, 200), (12e-3, 12e-3))
     layer = Layer(10e-3, ThreeParameterSolid(G0=5.29e5, tau=3.2e-3, f=85.1), 1150.0)
     op = ComplianceOperator(grid, influence_kernels(grid, layer, 2.7)["ww"])
@@ -88,7 +89,7 @@ def test_a_sphere_on_a_thick_lagging_layer_ends_on_the_dense_state():
     s = Sphere(0.02).profile(X, Y)
     res = solve_normal(op, s, load=59.0)
     dense = solve_normal(op, s, load=59.0, dense_limit=4000)
-    assert res.record.linear_iterations == 10000  # one failed GMRES run, then dense LU
+    assert res.record.linear_iterations == 100  # one failed GMRES cycle, then dense LU
     assert np.array_equal(res.force > 0, dense.force > 0)
     assert np.abs(res.force - dense.force).max() < 1e-12 * dense.force.max()
     F, h = dense.force.ravel(), dense.gap.ravel()
