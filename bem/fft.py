@@ -1,14 +1,19 @@
 """The discrete Fourier transforms of :mod:`bem`: NumPy's on one thread, SciPy's on more.
 
 numpy.fft and scipy.fft are the same library (pocketfft). Best of three repetitions, one
-thread, at the sizes the solvers use, a forward and inverse pair by NumPy took 0.88-1.27
-times SciPy's (0.97-1.06 from 128 x 128 points on; the extra at 64 x 64 is 10 us of call
-overhead). SciPy adds threads (``workers``), which pay from
-:data:`bem.operator.THREADED_FROM` points on, and its import costs a process about
-0.17 s (it loads scipy.special and the array-API layer), a third of a small
-``bem solve``. So a transform asked of one thread runs in numpy.fft, and scipy.fft is
-imported by the first transform asked of more (``workers`` other than 1; -1 is every
-core).
+thread, at the sizes the solvers use, a forward and inverse pair in double precision by
+NumPy took 0.88-1.27 times SciPy's (0.97-1.06 from 128 x 128 points on; the extra at
+64 x 64 is 10 us of call overhead); in single precision 3.0-3.4 times (the frictional
+solver's fields of 3 x 61 x 61 and 3 x 121 x 121 nodes: SciPy vectorises over rows).
+SciPy adds threads (``workers``), which pay from :data:`bem.operator.THREADED_FROM`
+points on, and its import costs a process about 0.17 s (it loads scipy.special and the
+array-API layer), a third of a small ``bem solve``. So a transform runs in numpy.fft
+when it is asked of one thread and is in double precision or smaller than
+:data:`SINGLE_FROM` values; otherwise scipy.fft runs it, imported by the first such
+transform. Measured, the frictional solve of ``examples/elastic-paraboloid-creepage.toml``
+against every transform in scipy.fft (9 alternated pairs, loaded machine): 1.05 times as
+long at 61 x 61 (every transform in numpy.fft), 1.03 at 121 x 121 (single precision in
+scipy.fft; 1.14 with numpy.fft throughout).
 
 Only the calls and arguments that :mod:`bem` uses are here; ``workers`` is keyword-only.
 """
@@ -19,45 +24,53 @@ import functools
 
 import numpy as np
 
-__all__ = ["fft", "ifft", "rfft", "irfft", "rfft2", "irfft2", "next_fast_len"]
+__all__ = ["fft", "ifft", "rfft", "irfft", "rfft2", "irfft2", "next_fast_len", "SINGLE_FROM"]
 
 
-def _lib(workers: int):
-    """The module that runs a transform on ``workers`` threads and the keyword it takes."""
-    if workers == 1:
-        return np.fft, {}
+#: single-precision transforms of this many input values or more run in scipy.fft (module
+#: docstring): the frictional solver's fields from about 82 x 82 nodes on (3 fields)
+SINGLE_FROM = 20_000
+
+
+def _lib(x, workers: int):
+    """The module that runs a transform of ``x`` on ``workers`` threads, the keyword it
+    takes, and ``x`` as an array."""
+    x = np.asarray(x)
+    single = x.dtype in (np.float32, np.complex64)
+    if workers == 1 and (not single or x.size < SINGLE_FROM):
+        return np.fft, {}, x
     import scipy.fft
 
-    return scipy.fft, {"workers": workers}
+    return scipy.fft, {"workers": workers}, x
 
 
 def fft(x, n=None, axis=-1, *, workers=1):
-    lib, kw = _lib(workers)
+    lib, kw, x = _lib(x, workers)
     return lib.fft(x, n, axis, **kw)
 
 
 def ifft(x, n=None, axis=-1, *, workers=1):
-    lib, kw = _lib(workers)
+    lib, kw, x = _lib(x, workers)
     return lib.ifft(x, n, axis, **kw)
 
 
 def rfft(x, n=None, axis=-1, *, workers=1):
-    lib, kw = _lib(workers)
+    lib, kw, x = _lib(x, workers)
     return lib.rfft(x, n, axis, **kw)
 
 
 def irfft(x, n=None, axis=-1, *, workers=1):
-    lib, kw = _lib(workers)
+    lib, kw, x = _lib(x, workers)
     return lib.irfft(x, n, axis, **kw)
 
 
 def rfft2(x, s=None, *, workers=1):
-    lib, kw = _lib(workers)
+    lib, kw, x = _lib(x, workers)
     return lib.rfft2(x, s, **kw)
 
 
 def irfft2(x, s=None, *, workers=1):
-    lib, kw = _lib(workers)
+    lib, kw, x = _lib(x, workers)
     return lib.irfft2(x, s, **kw)
 
 

@@ -105,8 +105,10 @@ def old_module(rev: str, name: str = ""):
 def old_solver(rev: str):
     """``solve_friction`` of the ``bem`` package at git revision ``rev`` (:func:`old_module`);
     in revisions before the ``bem.frictional`` package, ``bem/rolling.py``'s."""
-    module = old_module(rev)
-    return module.solve_friction if hasattr(module, "solve_friction") else old_module(rev, "rolling").solve_friction
+    try:
+        return old_module(rev, "frictional").solve_friction
+    except ModuleNotFoundError:
+        return old_module(rev, "rolling").solve_friction
 
 
 def compare(new, old) -> str:

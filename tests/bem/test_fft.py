@@ -42,6 +42,17 @@ def test_transforms_equal_scipys(workers, dtype):
         assert np.abs(ours - theirs).max() <= tol * np.abs(theirs).max()
 
 
+def test_the_library_by_threads_precision_and_size():
+    small, large = np.ones((3, 40, 40)), np.ones((3, 90, 90))  # 4800 and 24 300 values
+    assert large.size >= fft.SINGLE_FROM > small.size
+    for x, workers, lib in [(small, 1, np.fft), (large, 1, np.fft), (small.astype(np.float32), 1, np.fft),
+                            (large.astype(np.float32), 1, scipy.fft), (large.astype(np.complex64), 1, scipy.fft),
+                            (large.astype(np.complex128), 1, np.fft), (small, 2, scipy.fft), (small, -1, scipy.fft)]:
+        assert fft._lib(x, workers)[0] is lib, (x.shape, x.dtype, workers)
+    big = RNG.standard_normal((3, 90, 90)).astype(np.float32)
+    np.testing.assert_array_equal(fft.rfft(big, 128), scipy.fft.rfft(big, 128))
+
+
 def test_a_small_frictional_solve_does_not_import_scipy_fft():
     code = ("import sys\n"
             "from bem.cli import main\n"
