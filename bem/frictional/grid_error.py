@@ -27,6 +27,7 @@ from typing import Callable
 from ..convergence import Convergence, richardson
 from ..grid import Grid
 from ..plane import LineGrid
+from ..threads import with_one_blas_thread
 
 __all__ = ["SCALARS", "GridErrorEstimate", "coarsened_grid", "estimate_grid_error"]
 
@@ -94,6 +95,7 @@ def coarsened_grid(grid: Grid, factor: int) -> Grid:
                         (grid.truncation_x, grid.truncation_y), hw)
 
 
+@with_one_blas_thread
 def estimate_grid_error(problem, friction, fine=None, progress: Callable[[str], None] | None = None,
                         options=None) -> GridErrorEstimate:
     """Solve ``problem`` with ``friction`` (:func:`bem.frictional.solve_friction`) on its

@@ -20,6 +20,7 @@ from ..operator import one_worker
 from ..plane import LINE_DENSE_LIMIT, LineGrid, line_dissipation
 from ..problem import Problem, compute_kernels
 from ..spectral import BLOCKS
+from ..threads import with_one_blas_thread
 from .active_set import ActiveSetResult, LinearSolves, run_active_set
 from .loading import check_reachable, constraint
 from .operators import RollingOperators
@@ -30,6 +31,7 @@ from .system import RollingSetup, SetState, SetSystem
 __all__ = ["solve_friction", "solve_rolling"]
 
 
+@with_one_blas_thread
 def solve_friction(problem: Problem, friction: Friction, progress: Callable[[str], None] | None = None,
                    options: SolverOptions | None = None, kernels: dict | None = None,
                    energy: bool = True) -> tuple[FrictionalContact, dict]:

@@ -39,3 +39,19 @@ def test_a_solve_runs_its_blas_on_one_thread_and_restores_the_count(two_blas_thr
 def test_a_thread_count_the_user_set_is_kept(two_blas_threads, monkeypatch, variable):
     monkeypatch.setenv(variable, "2")
     assert _threads_during_solve() == {2}
+
+
+def test_the_grid_error_solves_run_their_blas_on_one_thread(two_blas_threads):
+    """``bem solve``'s default grid error solves the coarse levels outside the driver
+    (:func:`bem.frictional.grid_error.estimate_grid_error`): they too run on one thread."""
+    from bem.frictional import Friction
+    from bem.frictional.grid_error import estimate_grid_error
+
+    seen: set[int] = set()
+    grid = Grid.centred((0.2e-3, 0.2e-3), (0.05, 0.05), (125, 125), (4e-3, 4e-3))
+    problem = Problem(Layer(0.01, Elastic(3e6), 0.0), Paraboloid(0.02), grid, Loading(1.0, load=5.0))
+    friction = Friction(0.2, "omega", omega=0.99 / 0.02)
+    fine = solve(problem, friction)
+    estimate_grid_error(problem, friction, fine=fine, progress=lambda line: seen.update(_blas_threads()))
+    assert seen == {1}
+    assert _blas_threads() == {2}
