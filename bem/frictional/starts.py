@@ -9,12 +9,13 @@ from typing import Callable
 
 import numpy as np
 
+from ..coarse_levels import prolonged
 from .model import Friction, FrictionNotConverged
 from .active_set import ActiveSetResult, LinearSolves, run_active_set
 from .options import SolverOptions
 from .system import RollingSetup, SetState
 
-__all__ = ["frictionless_start", "saturation_creepage", "coarse_start", "prolong", "coarse_forces", "continuation"]
+__all__ = ["frictionless_start", "saturation_creepage", "coarse_start", "coarse_forces", "continuation"]
 
 
 def frictionless_start(N0: np.ndarray, ell: np.ndarray, speed: float, friction: Friction,
@@ -105,13 +106,6 @@ def _around(shape: tuple[int, int]):
             yield np.ix_(jy, ix)
 
 
-def prolong(coarse: np.ndarray, shape: tuple[int, int]) -> np.ndarray:
-    """Nodal values on every other node (``coarse``, ``((K_y + 1) / 2, (K_x + 1) / 2)``)
-    interpolated bilinearly onto the grid of ``shape`` (odd sizes): a fine node takes the
-    mean of the one, two or four coarse nodes around it."""
-    return sum(coarse[near] for near in _around(shape)) / 4
-
-
 def coarse_forces(coarse_result, shape: tuple[int, int], N0: np.ndarray, d0: float, below=None) -> tuple:
     """The first iterate of the fine grid (``shape``) from the frictional solution on every
     other node: ``(N, S_x, S_y, d, Omega)``, flat full-grid forces (N), ``d`` (m) and
@@ -119,7 +113,7 @@ def coarse_forces(coarse_result, shape: tuple[int, int], N0: np.ndarray, d0: flo
 
     The normal forces are the fine frictionless solve's ``N0`` (N), exact for the fine grid
     but for friction's share; the tangential forces the coarse ones prolonged
-    (:func:`prolong`) on the contact of ``N0``, a quarter of the coarse value (a nodal force
+    (:func:`bem.coarse_levels.prolonged`, bilinear) on the contact of ``N0``, a quarter of the coarse value (a nodal force
     is the traction times the node's area, a quarter of a coarse node's); ``d`` is the fine
     frictionless ``d0`` (m) plus what friction adds on the coarse grid (the coarse
     frictional minus the coarse frictionless ``below``'s; ``d0`` alone without ``below``),
@@ -134,8 +128,8 @@ def coarse_forces(coarse_result, shape: tuple[int, int], N0: np.ndarray, d0: flo
     """
     res = coarse_result
     contact = N0 > 0
-    Sx = np.where(contact, prolong(res.force_x, shape).ravel() / 4, 0.0)
-    Sy = np.where(contact, prolong(res.force_y, shape).ravel() / 4, 0.0)
+    Sx = np.where(contact, prolonged(res.force_x, shape).ravel() / 4, 0.0)
+    Sy = np.where(contact, prolonged(res.force_y, shape).ravel() / 4, 0.0)
     d = d0 + (res.indentation - below.indentation if below is not None else 0.0)
     return N0, Sx, Sy, d, res.omega
 

@@ -211,8 +211,8 @@ def test_continuation_failure_names_where_it_stopped(monkeypatch):
     assert isinstance(info.value.__cause__, FrictionNotConverged)
 
 
-def test_prolong_is_exact_on_bilinear_fields_and_coarse_forces_scale_by_the_node_area():
-    """:func:`bem.frictional.starts.prolong` reproduces ``a + b x + c y + e x y`` sampled on
+def test_prolonged_is_exact_on_bilinear_fields_and_coarse_forces_scale_by_the_node_area():
+    """:func:`bem.coarse_levels.prolonged` reproduces ``a + b x + c y + e x y`` sampled on
     every other node at every node of the fine grid (the mean of two neighbours is exact
     along an edge, of four at a cell's centre); :func:`coarse_forces` hands on the fine
     frictionless forces, a quarter of the prolonged coarse tangential forces on their
@@ -220,12 +220,13 @@ def test_prolong_is_exact_on_bilinear_fields_and_coarse_forces_scale_by_the_node
     fine indentation plus what friction added on the coarse grid, and the coarse Omega."""
     from types import SimpleNamespace
 
-    from bem.frictional.starts import coarse_forces, prolong
+    from bem.coarse_levels import prolonged
+    from bem.frictional.starts import coarse_forces
 
     Ky, Kx = 9, 13
     y, x = np.mgrid[0:Ky, 0:Kx].astype(float)
     f = 0.3 + 1.7 * x - 0.4 * y + 0.05 * x * y
-    np.testing.assert_allclose(prolong(f[::2, ::2], (Ky, Kx)), f, rtol=0, atol=1e-13)
+    np.testing.assert_allclose(prolonged(f[::2, ::2], (Ky, Kx)), f, rtol=0, atol=1e-13)
     rng = np.random.default_rng(3)
     N0 = np.where(rng.random(Ky * Kx) < 0.6, rng.uniform(0.1, 1.0, Ky * Kx), 0.0)
     coarse = SimpleNamespace(force_x=np.full((5, 7), 0.8), force_y=f[::2, ::2], indentation=2.5e-4, omega=3.1)
