@@ -395,7 +395,7 @@ def solve_normal(
     careful = False
     history = []
     guess = np.zeros(active.sum() + 1)
-    if start is not None and active is start:
+    if coarse is not None and active is start:
         # the coarse forces, prolonged (a nodal force is the pressure times the node's area, a
         # quarter of a coarse node's), and the coarse indentation start the first solve
         guess = np.concatenate([prolonged(coarse.force, grid.shape).ravel()[active] / 4, [coarse.indentation]])
