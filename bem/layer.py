@@ -42,7 +42,7 @@ from ._checks import real
 
 __all__ = [
     "Layer", "system_matrix", "surface_compliance", "surface_compliance_expm", "normal_compliance",
-    "normal_compliance_outer", "compliance_blocks",
+    "normal_compliance_outer", "compliance_blocks", "DEEP_KH", "SERIES_EPS",
 ]
 
 
@@ -333,7 +333,8 @@ def _wave_frame_halfspace(k, q):
     return k * (k + q) / R, 1j * (k - q) / R, -1j * (k - q) / R, q * (q + k) / R
 
 
-_HALFSPACE_KH = 50.0
+#: ``k H`` beyond which (with ``Re(q) H``) a mode takes the half-space compliance
+DEEP_KH = 50.0
 
 
 def _mode_parts(nu_x, nu_y, G, rho_V2, H):
@@ -344,7 +345,7 @@ def _mode_parts(nu_x, nu_y, G, rho_V2, H):
     )
     k = np.hypot(nu_x, nu_y)
     q = np.sqrt(k * k - rho_V2 * nu_x**2 / G)  # principal root, Re q >= 0
-    half = np.minimum(k, q.real) * H > _HALFSPACE_KH
+    half = np.minimum(k, q.real) * H > DEEP_KH
     if half.all():  # the common case for the high modes: no masking
         parts = [v / G for v in _wave_frame_halfspace(k, q)]
         return (k, *parts, 1 / (G * q))
@@ -426,7 +427,9 @@ def surface_compliance(nu_x, nu_y, G, rho_V2, H):
     return C
 
 
-_SERIES_EPS = 1e-6
+#: below this ``eps = rho V^2 nu_x^2 / (G k^2)`` a deep mode's normal compliance is a series
+#: (:func:`normal_compliance_outer`)
+SERIES_EPS = 1e-6
 
 
 def normal_compliance_outer(nu_x, nu_y, G, rho_V2, H):
@@ -447,7 +450,7 @@ def normal_compliance_outer(nu_x, nu_y, G, rho_V2, H):
         out += 1.0
         out *= inv_k
         out *= (0.5 / G)[:, None]
-        exact = (k * H <= _HALFSPACE_KH) | (np.abs(b)[:, None] * inv_k**2 > 0.75 * _SERIES_EPS)
+        exact = (k * H <= DEEP_KH) | (np.abs(b)[:, None] * inv_k**2 > 0.75 * SERIES_EPS)
     if exact.any():
         i, j = np.nonzero(exact)
         out[i, j] = normal_compliance(nu_x[i], nu_y[j], G[i], rho_V2, H)

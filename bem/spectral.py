@@ -13,9 +13,14 @@ lattice frequency, the grid's Nyquist ``pi / a``, and each takes half its term
 (:func:`end_weights`; ``docs/derivations.md``, section 8, "End modes").
 :func:`influence_kernels` evaluates it for every offset of the grid at once: the mode
 symbols on the quarter ``m, n >= 0`` (reality ``g(-m, -n) = conj g(m, n)`` and parity in
-``n``), then two chirp-z (Bluestein) transforms (:mod:`bem.mode_sums`), exact for any
-``a / L``, at a cost of ``O(N_t^2 log N_t)``. :func:`influence_kernels_direct` is the paper's route, summing every
-term for two source nodes, kept as the slow reference.
+``n``), summed over ``n`` then ``m`` (:mod:`bem.mode_sums`): by matrix products up to
+:data:`_MATMUL_NODES` nodes a side, above by chirp-z (Bluestein) transforms, exact for any
+``a / L`` at a cost of ``O(N_t^2 log N_t)``, or by DCT-I / DST-I when ``L = 2 Q a`` with
+``Q >= N_t``. The deep modes of a layer without inertia (and of the normal block with a
+little) need no complex symbol: their sums are of the real ``1 / k`` and ``1 / k^3``
+(:mod:`bem.halfspace_sums`; on a square grid with one modulus, over the modes ``n >= m``
+alone). :func:`influence_kernels_direct` is the paper's route, summing every term for two
+source nodes, kept as the slow reference.
 
 A kernel table ``K`` has shape ``(2 K_y - 1, 2 K_x - 1)``; ``K[dy + K_y - 1, dx + K_x - 1]``
 is the displacement (m) at offset ``(dx a_x, dy a_y)`` from a unit force (N), with the
@@ -25,15 +30,15 @@ traction sign of the paper (``sigma_z`` positive in tension, displacements posit
 
 from __future__ import annotations
 
-import os
-from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 
 import numpy as np
 
+from .batches import CHUNK, in_batches, real_chunk
 from .grid import Grid
-from .layer import Layer, compliance_blocks, normal_compliance_outer, surface_compliance
-from .mode_sums import chirp_sum, over_m, over_n, turns
+from .halfspace_sums import HALFSPACE_KH, even_sums, halfspace_symbols, inverse_powers, odd_sum, square_sums
+from .layer import DEEP_KH, SERIES_EPS, Layer, compliance_blocks, normal_compliance_outer, surface_compliance
+from .mode_sums import chirp_sum, over_m, over_n
 
 __all__ = ["BLOCKS", "chirp_sum", "end_weights", "influence_kernels", "influence_kernels_direct", "kernels_with_power",
            "mode_symbols"]
@@ -41,7 +46,7 @@ __all__ = ["BLOCKS", "chirp_sum", "end_weights", "influence_kernels", "influence
 #: block name -> (row, column) in the 3x3 compliance, rows/cols ordered (w, u, v)
 BLOCKS = {p + q: (i, j) for i, p in enumerate("wuv") for j, q in enumerate("wuv")}
 _ODD_IN_NY = {"wv", "vw", "uv", "vu"}
-_CHUNK = 256  # rows of m per batch of symbol evaluation
+
 
 
 def _check_blocks(blocks) -> tuple[str, ...]:
@@ -100,12 +105,6 @@ def _modes(grid: Grid, layer: Layer, speed: float) -> _Modes:
                   wy=sy * end_weights(g.truncation_y, g.spacing_y, g.period_y), rx=rx, ry=ry)
 
 
-def _in_batches(rows: int, work) -> None:
-    """``work(start)`` for every batch of :data:`_CHUNK` rows of ``m``, on two threads."""
-    with ThreadPoolExecutor(max_workers=min(2, os.cpu_count() or 1)) as pool:
-        list(pool.map(work, range(0, rows, _CHUNK)))
-
-
 def mode_symbols(grid: Grid, layer: Layer, speed: float, blocks=("ww",)) -> dict:
     """Fourier weights ``g_PQ(m, n)`` for ``0 <= m <= N_tx``, ``0 <= n <= N_ty``.
 
@@ -120,11 +119,11 @@ def mode_symbols(grid: Grid, layer: Layer, speed: float, blocks=("ww",)) -> dict
     out = {b: np.empty((md.m.size, md.n.size), dtype=complex) for b in blocks}
 
     def work(start: int) -> None:
-        s = slice(start, min(start + _CHUNK, md.m.size))
+        s = slice(start, min(start + CHUNK, md.m.size))
         for b, sym in _symbol_rows(layer, md.nu_x[s], md.nu_y, md.G[s], rho_V2, weight[s], blocks).items():
             out[b][s] = sym
 
-    _in_batches(md.m.size, work)
+    in_batches(md.m.size, work)
     return out
 
 
@@ -138,11 +137,12 @@ def _symbol_rows(layer: Layer, nu_x, nu_y, G, rho_V2: float, weight, blocks) -> 
 
 
 def _kernels_streamed(grid: Grid, layer: Layer, speed: float, blocks: tuple, power: bool = False):
-    """:func:`kernels_from_symbols` of :func:`mode_symbols` a batch of ``m`` at a time: each
-    batch's symbols are summed over ``n`` at once, so only ``(N_tx + 1) x (2 K_y - 1)``
+    """The kernels of :func:`mode_symbols` summed a batch of ``m`` at a time: each batch's
+    symbols are summed over ``n`` at once (:func:`bem.mode_sums.over_n`), so only
+    ``(N_tx + 1) x (2 K_y - 1)``
     partial sums a block are kept, not every mode's symbol (at 513 x 513 nodes, ``N_t =
     4924``, 9 x 0.39 GB of symbols). The same sums, in the same order. With ``power`` the
-    :func:`power_kernels` tables from the same symbols as well (``{}`` without)."""
+    :func:`kernels_with_power` tables from the same symbols as well (``{}`` without)."""
     Kx, Ky = grid.nodes_x, grid.nodes_y
     chirp = max(Kx, Ky) > _MATMUL_NODES
     md = _modes(grid, layer, speed)
@@ -151,14 +151,14 @@ def _kernels_streamed(grid: Grid, layer: Layer, speed: float, blocks: tuple, pow
     Hp = {b: np.empty((md.m.size, 2 * Ky - 1), dtype=complex) for b in blocks} if power else {}
 
     def work(start: int) -> None:
-        s = slice(start, min(start + _CHUNK, md.m.size))
+        s = slice(start, min(start + CHUNK, md.m.size))
         weight = np.outer(md.wx[s], md.wy)
         for b, sym in _symbol_rows(layer, md.nu_x[s], md.nu_y, md.G[s], rho_V2, weight, blocks).items():
             H[b][s] = over_n(sym, b in _ODD_IN_NY, md.ry, Ky, chirp)
             if power:
                 Hp[b][s] = over_n(sym, b in _ODD_IN_NY, md.ry, Ky, chirp, md.sy) * _power_rows(grid, md, s)
 
-    _in_batches(md.m.size, work)
+    in_batches(md.m.size, work)
     return ({b: over_m(H.pop(b), md.rx, Kx, chirp) for b in blocks},
             {b: over_m(Hp.pop(b), md.rx, Kx, chirp) for b in blocks} if power else {})
 
@@ -180,89 +180,20 @@ _MATMUL_NODES = 128  # up to this many nodes a side, trigonometric matrix produc
 _chirp_sum = chirp_sum  # the earlier private name
 
 
-def _kernel_by_products(grid: Grid, sym: np.ndarray, odd: bool) -> np.ndarray:
-    """The double sum by real matrix products: cost ``O(N_t^2 K)``, best for small grids."""
-    g = grid
-    Kx, Ky = g.nodes_x, g.nodes_y
-    n = np.arange(sym.shape[1])
-    ph = turns(g.spacing_y / g.period_y, n, np.arange(Ky))  # (n, dy >= 0)
-    re, im = np.ascontiguousarray(sym.real), np.ascontiguousarray(sym.imag)
-    if odd:  # sum_n g (e^{i..} - e^{-i..}) = 2 i sum_{n>0} g sin
-        T = 2 * np.sin(ph)
-        h_re, h_im = -(im @ T), re @ T
-        h_re = np.concatenate([-h_re[:, :0:-1], h_re], axis=1)
-        h_im = np.concatenate([-h_im[:, :0:-1], h_im], axis=1)
-    else:
-        T = 2 * np.cos(ph)
-        T[0] = 1.0
-        h_re, h_im = re @ T, im @ T
-        h_re = np.concatenate([h_re[:, :0:-1], h_re], axis=1)
-        h_im = np.concatenate([h_im[:, :0:-1], h_im], axis=1)
-    m = np.arange(sym.shape[0])
-    phx = turns(g.spacing_x / g.period_x, np.arange(-(Kx - 1), Kx), m)  # (dx, m)
-    wm = np.full(m.size, 2.0)
-    wm[0] = 1.0
-    K = (np.cos(phx) * wm) @ h_re - (np.sin(phx) * wm) @ h_im  # Re sum_m w h e^{i..}
-    return K.T
-
-
-def kernels_from_symbols(grid: Grid, symbols: dict) -> dict:
-    """Kernel tables (m/N) from quarter-plane symbols (see :func:`mode_symbols`)."""
-    g = grid
-    Kx, Ky = g.nodes_x, g.nodes_y
-    rx, ry = g.spacing_x / g.period_x, g.spacing_y / g.period_y
-    out = {}
-    for b, sym in symbols.items():
-        if max(Kx, Ky) <= _MATMUL_NODES:
-            out[b] = _kernel_by_products(g, sym, b in _ODD_IN_NY)
-            continue
-        odd = b in _ODD_IN_NY
-        coef = 2 * sym
-        coef[:, 0] = 0 if odd else sym[:, 0]
-        S = chirp_sum(coef, ry, -(Ky - 1), 2 * Ky - 1)  # (m, dy) over n >= 0
-        # full n-sum from the n >= 0 half: g(m, -n) = +/- g(m, n)
-        h = 0.5 * (S + S[:, ::-1]) if not odd else 0.5 * (S - S[:, ::-1])
-        cm = 2 * h.T
-        cm[:, 0] = h[0]
-        out[b] = chirp_sum(cm, rx, -(Kx - 1), 2 * Kx - 1).real  # (dy, dx)
-    return out
-
-
-#: ``k H`` beyond which a mode does not see the base: the layer's compliance is the
-#: half-space's to ``exp(-k H) = 9e-27`` (:mod:`bem.layer` switches at 50)
-HALFSPACE_KH = 60.0
-
-
-def halfspace_symbols(nu_x: np.ndarray, nu_y: np.ndarray) -> dict:
-    """``G C_PQ`` (m) of an incompressible half-space without inertia, on the outer grid
-    ``nu_x[:, None], nu_y[None, :]`` (rad/m): real, ``0`` at ``k = 0``.
-
-    With ``q = k`` the Rayleigh function is ``4 k^3``, so ``G c_zz = G c_LL = 1 / (2 k)``,
-    ``G c_TT = 1 / k`` and the normal-tangential entries vanish: ``ww = 1 / (2 k)``,
-    ``uu = (nu_x^2 / 2 + nu_y^2) / k^3``, ``vv = (nu_x^2 + nu_y^2 / 2) / k^3 = 3 ww - uu``,
-    ``uv = vu = -nu_x nu_y / (2 k^3)`` (:func:`bem.layer.compliance_blocks` at ``k H > 50``).
-    Returned: ``ww, uu, uv``.
-    """
-    nx, ny = np.asarray(nu_x, float)[:, None], np.asarray(nu_y, float)[None, :]
-    k = np.hypot(nx, ny)
-    with np.errstate(divide="ignore"):
-        inv_k = np.where(k > 0, 1.0 / k, 0.0)
-    inv_k3 = inv_k * inv_k * inv_k
-    return {"ww": 0.5 * inv_k, "uu": (0.5 * nx * nx + ny * ny) * inv_k3, "uv": (-0.5 * nx) * ny * inv_k3}
-
-
 def _kernels_halfspace_split(grid: Grid, layer: Layer, speed: float, blocks: tuple, power: bool = False):
     """The kernels without inertia (``rho V^2 = 0``), split into the half-space modes'
     sum and a correction on the few modes that see the base (``k H <= HALFSPACE_KH``).
 
     Without inertia a half-space mode's symbol is ``sinc_x sinc_y / (L_x L_y G(omega_m))``
-    times a real function of ``nu`` (:func:`halfspace_symbols`): the sum over ``n`` runs on
-    real numbers (one real matrix product, or chirp-z above :data:`_MATMUL_NODES` nodes)
-    before the factor ``1 / G`` of the row, the normal-tangential blocks have no
-    half-space part, ``vu = uv`` and ``vv = 3 ww - uu``. The modes near the origin take the
+    times a real function of ``nu`` (:func:`halfspace_symbols`) made of ``1 / k`` and ``1 /
+    k^3``: the sums over ``n`` run on those real arrays (:mod:`bem.halfspace_sums`; real
+    matrix products, DCT-I / DST-I on a lattice, or chirp-z above :data:`_MATMUL_NODES`
+    nodes) before the factors of the row (``1 / G``, ``nu_x``); on a square grid with one real
+    ``G`` over the modes ``n >= m`` alone (:func:`bem.halfspace_sums.square_sums`). The
+    normal-tangential blocks have no half-space part, ``vu = uv`` and ``vv = 3 ww - uu``. The modes near the origin take the
     exact symbols (:func:`bem.layer.compliance_blocks`) less the half-space ones. The same
-    truncated sum as :func:`kernels_from_symbols`, to rounding. With ``power`` the
-    :func:`power_kernels` tables from the same symbols as well (``{}`` without).
+    truncated sum as :func:`_kernels_streamed`, to rounding. With ``power`` the
+    :func:`kernels_with_power` tables from the same symbols as well (``{}`` without).
     """
     g = grid
     Kx, Ky = g.nodes_x, g.nodes_y
@@ -270,21 +201,38 @@ def _kernels_halfspace_split(grid: Grid, layer: Layer, speed: float, blocks: tup
     md = _modes(grid, layer, speed)
     m, n, nu_x, nu_y, G, wx, wy, sy, rx, ry = md.m, md.n, md.nu_x, md.nu_y, md.G, md.wx, md.wy, md.sy, md.rx, md.ry
     inv_G = 1.0 / G
+    chunk = real_chunk(n.size)
     need = {"ww": ("ww", "vv"), "uu": ("uu", "vv"), "uv": ("uv", "vu")}
     parts = [b for b in ("ww", "uu", "uv") if any(t in blocks for t in need[b])]
     kinds = ("kernel", "power") if power else ("kernel",)
-    H = {(k, b): np.empty((m.size, 2 * Ky - 1), dtype=complex) for k in kinds for b in parts}
+    square = (not chirp and not power and Kx == Ky and np.array_equal(nu_x, nu_y) and np.array_equal(wx, wy)
+              and rx == ry and np.all(G == G[0]) and G[0].imag == 0)
+    H = {} if square else {(k, b): np.empty((m.size, 2 * Ky - 1), dtype=complex) for k in kinds for b in parts}
 
     def work(start: int) -> None:
-        s = slice(start, min(start + _CHUNK, m.size))
-        sym = halfspace_symbols(nu_x[s], nu_y)
-        weight = np.outer(wx[s], wy)
-        for k, b in H:
-            h = over_n(sym[b] * weight, b in _ODD_IN_NY, ry, Ky, chirp, sy if k == "power" else None)
-            H[k, b][s] = h * inv_G[s, None] * (_power_rows(g, md, s) if k == "power" else 1.0)
+        # ww = 1 / (2 k), uu = (nu_x^2 / 2 + nu_y^2) / k^3 = 1 / k - nu_x^2 / (2 k^3),
+        # uv = -nu_x nu_y / (2 k^3) (halfspace_symbols): sums over n of 1 / k and 1 / k^3
+        s = slice(start, min(start + chunk, m.size))
+        inv_k, inv_k3 = inverse_powers(nu_x[s], nu_y)
+        # nu_x^2 / (2 k^3) <= 1 / (2 k): of the scale of 1 / k (their sums may share a transform)
+        x2_inv_k3 = (0.5 * nu_x[s, None] ** 2) * inv_k3 if "uu" in parts else None
+        for k in kinds:
+            wn = wy * sy if k == "power" else wy
+            rows = (wx[s] * inv_G[s])[:, None] * (_power_rows(g, md, s) if k == "power" else 1.0)
+            c1, c3 = even_sums(inv_k, x2_inv_k3, wn, ry, Ky, chirp)
+            if "ww" in parts:
+                H[k, "ww"][s] = (0.5 * c1) * rows
+            if "uu" in parts:
+                H[k, "uu"][s] = (c1 - c3) * rows
+            if "uv" in parts:
+                H[k, "uv"][s] = (-0.5j * odd_sum(inv_k3, wn * nu_y, ry, Ky, chirp)) * (nu_x[s, None] * rows)
 
-    _in_batches(m.size, work)
-    half = {key: over_m(H.pop(key), rx, Kx, chirp) for key in list(H)}
+    if square:  # symmetric in (m, n): half the modes
+        half = {("kernel", b): t / G[0].real
+                for b, t in square_sums(nu_x, wx, rx, Kx, parts, chunk).items()}
+    else:
+        in_batches(m.size, work, chunk)
+        half = {key: over_m(H.pop(key), rx, Kx, chirp) for key in list(H)}
     for k in kinds:
         if "vv" in blocks:
             half[k, "vv"] = 3 * half[k, "ww"] - half[k, "uu"]
@@ -298,7 +246,7 @@ def _kernels_halfspace_split(grid: Grid, layer: Layer, speed: float, blocks: tup
     near = {(k, b): np.empty((Mx, 2 * Ky - 1), dtype=complex) for k in kinds for b in blocks}
 
     def correction(start: int) -> None:
-        s = slice(start, min(start + _CHUNK, Mx))
+        s = slice(start, min(start + CHUNK, Mx))
         exact = compliance_blocks(nu_x[s, None], nu_y[None, :My], G[s, None], 0.0, layer.thickness, blocks)
         hs = halfspace_symbols(nu_x[s], nu_y[:My])
         hs["vv"], hs["vu"] = 3 * hs["ww"] - hs["uu"], hs["uv"]
@@ -308,12 +256,66 @@ def _kernels_halfspace_split(grid: Grid, layer: Layer, speed: float, blocks: tup
             h = over_n(corr * weight, b in _ODD_IN_NY, ry, Ky, False, sy[:My] if k == "power" else None)
             near[k, b][s] = h * _power_rows(g, md, s) if k == "power" else h
 
-    _in_batches(Mx, correction)
+    in_batches(Mx, correction)
     out = {k: {} for k in ("kernel", "power")}
     for k, b in list(near):
         K = over_m(near.pop((k, b)), rx, Kx, False)
         out[k][b] = K + half[k, b] if (k, b) in half else K
     return out["kernel"], out["power"]
+
+
+def _series_holds(grid: Grid, layer: Layer, speed: float) -> bool:
+    """Whether every mode beyond ``k H = DEEP_KH`` (50) takes the normal compliance's series
+    (:func:`bem.layer.normal_compliance_outer`): ``eps = rho V^2 nu_x^2 / (G k^2) <=
+    rho V^2 / |G(omega_m)|`` below its bound on every row ``m``, with a margin of 1e-3."""
+    md = _modes(grid, layer, speed)
+    return bool(layer.inertia(speed) * np.max(1.0 / np.abs(md.G)) <= (1 - 1e-3) * SERIES_EPS)
+
+
+def _kernels_normal_series(grid: Grid, layer: Layer, speed: float, blocks: tuple, power: bool = False):
+    """The normal kernel with inertia when every deep mode takes the series of
+    :func:`bem.layer.normal_compliance_outer` (:func:`_series_holds`): its symbol there is
+    ``1 / (2 G k) + 3 rho V^2 nu_x^2 / (8 G^2 k^3)``, sums over ``n`` of the real ``1 / k``
+    and ``1 / k^3`` (:mod:`bem.halfspace_sums`) times factors of the row, plus the exact
+    less the series' symbols on the modes ``k H <= 50`` (a box of rows and columns,
+    batch by batch with the rest). The same truncated sum as :func:`_kernels_streamed`, to
+    rounding."""
+    g, H = grid, layer.thickness
+    Kx, Ky = g.nodes_x, g.nodes_y
+    chirp = max(Kx, Ky) > _MATMUL_NODES
+    md = _modes(grid, layer, speed)
+    rho_V2 = layer.inertia(speed)
+    f1 = 0.5 / md.G  # of 1 / k
+    f3 = 0.375 * rho_V2 / md.G**2  # of nu_x^2 / k^3, which is of the scale of 1 / k
+    kinds = ("kernel", "power") if power else ("kernel",)
+    chunk = real_chunk(md.n.size)
+    far = {k: np.empty((md.m.size, 2 * Ky - 1), dtype=complex) for k in kinds}
+
+    def rows(k: str, s: slice) -> np.ndarray:
+        return md.wx[s, None] * (_power_rows(g, md, s) if k == "power" else 1.0)
+
+    # the modes k H <= DEEP_KH (a row and a column more) add their exact less series symbols
+    Mx = min(md.m.size, int(DEEP_KH * g.period_x / (2 * np.pi * H)) + 2)
+    My = min(md.n.size, int(DEEP_KH * g.period_y / (2 * np.pi * H)) + 2)
+
+    def work(start: int) -> None:
+        s = slice(start, min(start + chunk, md.m.size))
+        inv_k, inv_k3 = inverse_powers(md.nu_x[s], md.nu_y)
+        inv_k3 *= md.nu_x[s, None] ** 2
+        for k in kinds:
+            c1, c3 = even_sums(inv_k, inv_k3, md.wy * md.sy if k == "power" else md.wy, md.ry, Ky, chirp)
+            far[k][s] = (f1[s, None] * c1 + f3[s, None] * c3) * rows(k, s)
+        if start < Mx:
+            s = slice(start, min(start + chunk, Mx))
+            corr = normal_compliance_outer(md.nu_x[s], md.nu_y[:My], md.G[s], rho_V2, H)
+            corr -= f1[s, None] * inv_k[: s.stop - start, :My] + f3[s, None] * inv_k3[: s.stop - start, :My]
+            for k in kinds:
+                wn = md.wy[:My] * (md.sy[:My] if k == "power" else 1.0)
+                far[k][s] += over_n(corr, False, md.ry, Ky, False, wn) * rows(k, s)
+
+    in_batches(md.m.size, work, chunk)
+    out = {k: over_m(far.pop(k), md.rx, Kx, chirp) for k in kinds}
+    return {"ww": out["kernel"]}, ({"ww": out["power"]} if power else {})
 
 
 def influence_kernels(grid: Grid, layer: Layer, speed: float, blocks=("ww",)) -> dict:
@@ -363,7 +365,12 @@ def _tables(grid: Grid, layer: Layer, speed: float, blocks, power: bool) -> tupl
     if not (np.isfinite(speed) and speed >= 0):
         raise ValueError(f"speed must be finite and >= 0 m/s, got {speed!r}")
     blocks = _check_blocks(blocks)
-    split = _kernels_halfspace_split if layer.inertia(speed) == 0 else _kernels_streamed
+    if layer.inertia(speed) == 0:
+        split = _kernels_halfspace_split
+    elif blocks == ("ww",) and _series_holds(grid, layer, speed):
+        split = _kernels_normal_series
+    else:
+        split = _kernels_streamed
     out, pw = split(grid, layer, speed, blocks, power)
     bad = [b for b, k in (*out.items(), *pw.items()) if not np.isfinite(k).all()]
     if bad:

@@ -242,7 +242,7 @@ def test_halfspace_symbols_are_the_layer_compliance_of_deep_modes():
     k H from 60 to 3000, where the base is invisible: 1e-14 relative (measured ~2e-16);
     the normal-tangential entries vanish there (below 1e-14 of ww)."""
     from bem.layer import compliance_blocks
-    from bem.spectral import halfspace_symbols
+    from bem.halfspace_sums import halfspace_symbols
 
     H, G = 0.05, 3.0e6
     nu_x = np.linspace(-6e4, 6e4, 41)
@@ -256,3 +256,65 @@ def test_halfspace_symbols_are_the_layer_compliance_of_deep_modes():
         mine = hs.get(b, np.zeros(kx.shape)) / G
         scale = np.abs(ref["ww"][deep])
         assert np.all(np.abs(mine - ref[b])[deep] <= 1e-14 * scale), b
+
+
+# square grids: the same spacing, period and truncation along x and y. On the first
+# L = 2 N_t a (the phases pi n j / N_t: DCT-I and DST-I), on the second not.
+SQUARE_LATTICE = Grid(1e-3, 1e-3, 0.06, 0.06, 30, 30, 9, 9)
+SQUARE = Grid(0.7e-3, 0.7e-3, 0.02, 0.02, 40, 40, 8, 8)
+
+
+@pytest.mark.parametrize("grid", [SQUARE_LATTICE, SQUARE], ids=["lattice", "square"])
+@pytest.mark.parametrize("path", ["products", "chirp"])
+@pytest.mark.parametrize("layer, speed", [(THICK_ELASTIC, 0.0), (ELASTIC, 1.0), (THICK_VISCO, 0.05)])
+def test_square_grids_match_direct_summation(layer, speed, path, grid, monkeypatch):
+    """A constant modulus on a square grid: the half-space sums over the modes n >= m alone
+    (symmetry in (m, n)) by products, by DCT-I / DST-I on the lattice, by chirp-z off it;
+    a modulus that varies with m (no symmetry) by the general sums: every block against the
+    direct sum, 1e-14 of the block (measured 0.8-1.5e-15)."""
+    import bem.spectral
+
+    monkeypatch.setattr(bem.spectral, "_MATMUL_NODES", 128 if path == "products" else 0)
+    fast = influence_kernels(grid, layer, speed, blocks=BLOCKS)
+    direct = influence_kernels_direct(grid, layer, speed, blocks=BLOCKS)
+    for b in BLOCKS:
+        assert np.abs(fast[b] - direct[b]).max() <= 1e-14 * np.abs(direct[b]).max(), b
+
+
+@pytest.mark.parametrize("grid", [GRID, ALIASED, SQUARE_LATTICE], ids=["plain", "aliased-ends", "lattice"])
+@pytest.mark.parametrize("path", ["products", "chirp"])
+def test_normal_kernel_with_inertia_by_its_series(grid, path, monkeypatch):
+    """With rho V^2 / |G| below 1e-6 every deep mode's normal compliance is the series
+    1 / (2 G k) + 3 rho V^2 nu_x^2 / (8 G^2 k^3) (bem.layer.normal_compliance_outer): the
+    kernel is sums of the real 1 / k and 1 / k^3 plus the exact modes k H <= 50; against
+    the direct sum, 1e-14 of the table (measured 0.3-2.7e-15), with its power table against the
+    general route's (measured 0.2-0.9e-15)."""
+    import bem.spectral
+    from bem.spectral import kernels_with_power
+
+    monkeypatch.setattr(bem.spectral, "_MATMUL_NODES", 128 if path == "products" else 0)
+    assert bem.spectral._series_holds(grid, VISCO, 0.05)
+    fast, power = kernels_with_power(grid, VISCO, 0.05)
+    direct = influence_kernels_direct(grid, VISCO, 0.05)["ww"]
+    assert np.abs(fast["ww"] - direct).max() <= 1e-14 * np.abs(direct).max()
+    ref = bem.spectral._kernels_streamed(grid, VISCO, 0.05, ("ww",), power=True)[1]["ww"]
+    assert np.abs(power["ww"] - ref).max() <= 1e-14 * np.abs(ref).max()
+
+
+@pytest.mark.parametrize("Q, modes", [(12, 13), (12, 9)])
+def test_lattice_cosine_and_sine_sums(Q, modes):
+    """DCT-I and DST-I against the sums written out, with the end mode n = Q in the sum
+    (its cosine (-1)^j counted from both +-Q) and without."""
+    from bem.mode_sums import cos_sums, lattice_half, sin_sums
+
+    x = np.random.default_rng(2).normal(size=(3, modes))
+    n, j = np.arange(modes), np.arange(7)
+    ph = np.pi * np.outer(n, j) / Q
+    wn = np.where(n == 0, 1.0, 2.0)[:, None]
+    np.testing.assert_allclose(cos_sums(x, Q, 7), x @ (wn * np.cos(ph)), rtol=0, atol=1e-14 * np.abs(x).sum())
+    np.testing.assert_allclose(sin_sums(x, Q, 7), x @ (2 * np.sin(ph)), rtol=0, atol=1e-14 * np.abs(x).sum())
+    np.testing.assert_allclose(cos_sums(x.T, Q, 7, axis=0), (x @ (wn * np.cos(ph))).T, rtol=0,
+                               atol=1e-14 * np.abs(x).sum())
+    assert lattice_half(1 / (2 * Q), modes, 7) == Q
+    assert lattice_half(1 / (2 * Q) * (1 + 1e-9), modes, 7) is None  # not a lattice
+    assert lattice_half(1 / (2 * Q), 2 * Q, 7) is None  # modes beyond Q alias

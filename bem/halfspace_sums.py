@@ -1,0 +1,158 @@
+"""Mode sums of the half-space's real symbols ``1 / k`` and ``1 / k^3`` over ``n``.
+
+Without inertia a deep mode's compliance is ``1 / G(omega_m)`` times a real function of
+``nu`` built from ``1 / k`` and ``nu_x^a nu_y^b / k^3`` (:func:`halfspace_symbols`);
+with a little inertia the normal compliance is ``(1 + 3/4 eps) / (2 G k)``, ``eps = rho V^2
+nu_x^2 / (G k^2)`` (:func:`bem.layer.normal_compliance_outer`), the same two powers with
+factors of the row ``m``. So every deep-mode kernel is a sum over ``m`` of row factors
+times the sums over ``n`` of two real arrays, ``1 / k`` and ``1 / k^3``, weighted by
+functions of ``n`` alone: the weights go into the trigonometric table (or the chirp) once,
+the factors of ``m`` onto the ``(rows, 2 K_y - 1)`` partial sums, and no complex symbol of
+every mode is formed. The sums are the terms of :func:`bem.mode_sums.over_n`, reordered.
+On a square grid with one real modulus the symbols are symmetric in ``(m, n)`` (or
+antisymmetric) and :func:`square_sums` sums the modes ``n >= m`` alone.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .batches import in_batches
+from .mode_sums import cos_sums, lattice_half, over_n, sin_sums, trig_table
+
+__all__ = ["HALFSPACE_KH", "halfspace_symbols", "inverse_powers", "even_sums", "odd_sum", "square_sums"]
+
+#: ``k H`` beyond which a mode does not see the base: the layer's compliance is the
+#: half-space's to ``exp(-k H) = 9e-27`` (:mod:`bem.layer` switches at 50)
+HALFSPACE_KH = 60.0
+
+
+def halfspace_symbols(nu_x: np.ndarray, nu_y: np.ndarray) -> dict:
+    """``G C_PQ`` (m) of an incompressible half-space without inertia, on the outer grid
+    ``nu_x[:, None], nu_y[None, :]`` (rad/m): real, ``0`` at ``k = 0``.
+
+    With ``q = k`` the Rayleigh function is ``4 k^3``, so ``G c_zz = G c_LL = 1 / (2 k)``,
+    ``G c_TT = 1 / k`` and the normal-tangential entries vanish: ``ww = 1 / (2 k)``,
+    ``uu = (nu_x^2 / 2 + nu_y^2) / k^3``, ``vv = (nu_x^2 + nu_y^2 / 2) / k^3 = 3 ww - uu``,
+    ``uv = vu = -nu_x nu_y / (2 k^3)`` (:func:`bem.layer.compliance_blocks` at ``k H > 50``).
+    Returned: ``ww, uu, uv``.
+    """
+    nx, ny = np.asarray(nu_x, float)[:, None], np.asarray(nu_y, float)[None, :]
+    k = np.hypot(nx, ny)
+    with np.errstate(divide="ignore"):
+        inv_k = np.where(k > 0, 1.0 / k, 0.0)
+    inv_k3 = inv_k * inv_k * inv_k
+    return {"ww": 0.5 * inv_k, "uu": (0.5 * nx * nx + ny * ny) * inv_k3, "uv": (-0.5 * nx) * ny * inv_k3}
+
+
+def inverse_powers(nu_x: np.ndarray, nu_y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """``1 / k`` (m) and ``1 / k^3`` (m^3) on the outer grid ``nu_x[:, None], nu_y[None, :]``
+    (rad/m), ``k = |nu|``; ``0`` at ``k = 0`` (that mode is the base's, summed apart)."""
+    return _powers_of_k2(np.add.outer(nu_x * nu_x, nu_y * nu_y))
+
+
+def _powers_of_k2(k2: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """``1 / k`` and ``1 / k^3`` of ``k2 = k^2`` (1/m^2; overwritten), 0 at ``k = 0``."""
+    zero = k2 == 0
+    k2[zero] = 1.0
+    inv_k = np.sqrt(k2)
+    np.divide(1.0, inv_k, out=inv_k)
+    inv_k[zero] = 0.0
+    inv_k3 = np.divide(inv_k, k2, out=k2)
+    return inv_k, inv_k3
+
+
+def even_sums(A: np.ndarray, B: np.ndarray | None, weight_n: np.ndarray, ratio: float, count: int,
+              chirp: bool) -> tuple[np.ndarray, np.ndarray | None]:
+    """``sum_{|n| <= N_t} A(m, |n|) w(n) exp(2 pi i ratio n dy)`` for ``|dy| < count`` and the
+    same of ``B``: real ``(rows, 2 count - 1)`` each (``None`` for no ``B``). ``A, B`` real,
+    ``w`` the ``weight_n``. By chirp-z the two go as the real and imaginary parts of one
+    complex sum: each is even in ``n``, so each one's sum is real (its rounding is then
+    that of the larger: ``A`` and ``B`` must be of one scale); on a lattice
+    (:func:`bem.mode_sums.lattice_half`) each by a DCT-I instead."""
+    Q = lattice_half(ratio, A.shape[1], count) if chirp else None
+    if Q:
+        def one(X):
+            return None if X is None else _mirror(cos_sums(X, Q, count, weight=weight_n), 1.0)
+        return one(A), one(B)
+    if chirp and B is not None:
+        AB = np.empty(A.shape, dtype=complex)
+        AB.real, AB.imag = A, B
+        h = over_n(AB, False, ratio, count, True, weight_n)
+        return h.real, h.imag
+    sa = over_n(A, False, ratio, count, chirp, weight_n).real
+    return sa, (None if B is None else over_n(B, False, ratio, count, chirp, weight_n).real)
+
+
+def odd_sum(A: np.ndarray, weight_n: np.ndarray, ratio: float, count: int, chirp: bool) -> np.ndarray:
+    """``sum_{|n| <= N_t} sign(n) A(m, |n|) w(n) exp(2 pi i ratio n dy)`` (``A`` real, odd
+    extension in ``n``), ``|dy| < count``: ``i`` times the real array returned,
+    ``(rows, 2 count - 1)``."""
+    Q = lattice_half(ratio, A.shape[1], count) if chirp else None
+    if Q:
+        return _mirror(sin_sums(A * weight_n, Q, count), -1.0)
+    return over_n(A, True, ratio, count, chirp, weight_n).imag
+
+
+def _mirror(h: np.ndarray, sign: float) -> np.ndarray:
+    """``(rows, 2 count - 1)`` over ``dy = -(count - 1) .. count - 1`` from ``dy >= 0``, even
+    (``sign = 1``) or odd (-1) in ``dy``."""
+    return np.concatenate([sign * h[:, :0:-1], h], axis=1)
+
+
+def square_sums(nu: np.ndarray, weight: np.ndarray, ratio: float, count: int, parts, chunk: int) -> dict:
+    """``G`` times the half-space kernels ``ww, uu, uv`` (m/N times Pa) of a square lattice
+    of modes (the same ``nu`` (rad/m), ``weight`` (1/m) and ``ratio = a / L`` along ``x`` and
+    ``y``) and a constant real ``G``, by matrix products on half the modes: real tables
+    ``(2 count - 1, 2 count - 1)`` of the ``parts`` asked, ``chunk`` rows of ``m`` a batch.
+
+    With ``C = w (2 cos)`` and ``S = w (2 sin)`` (:func:`bem.mode_sums.over_n`'s tables,
+    ``N x count``), ``2 G ww = C' F C`` with ``F = 1 / k`` symmetric in ``(m, n)``: ``C' F C =
+    X + X' - C' diag(F) C``, ``X = C' (U C)``, ``U`` the upper triangle of ``F``, summed
+    row by row over ``n >= m`` only. ``G uu = 1 / k - nu_x^2 / (2 k^3)`` and ``nu_x^2 / k^3
+    = (1 / k + D) / 2`` with ``D = (nu_x^2 - nu_y^2) / k^3`` antisymmetric (``C' D C = Y -
+    Y'``), so ``G uu = (3 C' F C - C' D C) / 4``; ``2 G uv = S' (nu_x nu_y / k^3) S``, symmetric
+    again (:func:`halfspace_symbols`). ``C' F C`` is indexed ``[dx, dy]``, the
+    tables ``[dy, dx]``."""
+    N = nu.size
+    C = weight[:, None] * trig_table(ratio, N, count, False)
+    S = weight[:, None] * trig_table(ratio, N, count, True)
+    even = "ww" in parts or "uu" in parts
+    P = {key: np.empty((N, count)) for key, need in (("F", even), ("D", "uu" in parts), ("uv", "uv" in parts))
+         if need}
+
+    def work(start: int) -> None:
+        e = min(start + chunk, N)
+        inv_k, inv_k3 = inverse_powers(nu[start:e], nu[start:])
+        lower = np.tri(e - start, k=-1, dtype=bool)  # n < m in the leading block
+        inv_k[:, : e - start][lower] = 0.0
+        inv_k3[:, : e - start][lower] = 0.0
+        if even:
+            P["F"][start:e] = inv_k @ C[start:]
+        if "D" in P:
+            P["D"][start:e] = (inv_k3 * (nu[start:e, None] ** 2 - nu[None, start:] ** 2)) @ C[start:]
+        if "uv" in P:
+            P["uv"][start:e] = ((inv_k3 * nu[None, start:]) @ S[start:]) * nu[start:e, None]
+
+    in_batches(N, work, chunk)
+    d_inv_k, d_inv_k3 = _powers_of_k2(2 * nu * nu)  # the diagonal m = n
+    out = {}
+    if even:
+        X = C.T @ P["F"]
+        F = X + X.T - C.T @ (d_inv_k[:, None] * C)
+        if "ww" in parts:
+            out["ww"] = _unfold(0.5 * F, 1.0)
+        if "uu" in parts:
+            Y = C.T @ P["D"]
+            out["uu"] = _unfold((0.75 * F - 0.25 * (Y - Y.T)).T, 1.0)
+    if "uv" in parts:
+        Z = S.T @ P["uv"]
+        out["uv"] = _unfold(0.5 * (Z + Z.T - S.T @ ((nu * nu * d_inv_k3)[:, None] * S)), -1.0)
+    return out
+
+
+def _unfold(T: np.ndarray, sign: float) -> np.ndarray:
+    """The table over ``|dy|, |dx| < count`` from ``T[dy, dx]`` on ``dy, dx >= 0``, even
+    (``sign = 1``) or odd (-1) in each offset."""
+    T = _mirror(T, sign)
+    return np.concatenate([sign * T[:0:-1], T])
