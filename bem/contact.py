@@ -25,7 +25,7 @@ which minimises the true residual and orthogonalises by matrix products: 1.2-1.7
 faster than SciPy's GMRES here, 55 -> 47 iterations at 61 x 61, 87 -> 70 at 257 x 257),
 preconditioned by the inverse of the kernel's wrapped circulant (two FFTs,
 :meth:`bem.operator.ComplianceOperator.circulant_inverse`), so memory stays ``O(N)``.
-Products and preconditioner act on the set's bounding box (:func:`_box`,
+Products and preconditioner act on the set's bounding box (:mod:`bem.normal_system`,
 :meth:`~bem.operator.ComplianceOperator.block`), not the whole grid: the transforms shrink
 with the contact (the benchmark's viscoelastic contact below: a 120 x 104 box of the
 155 x 155 grid, products on a 240 x 216 embedding instead of 320 x 320).
@@ -45,22 +45,21 @@ inverse restricted to the set does no better (14 against 11 from zero on the con
 with the row filter ``(C_row / C)`` after them (``bem.frictional.preconditioner``'s form)
 gave 12 and 11, but the runs' dense inverses cost 26 ms CPU a set at 155 x 155 (113 runs
 of up to 100 nodes), the price of 28 GMRES iterations (0.95 ms each, product and
-preconditioner), to save about three. The viscoelastic solve's extra iterations are then
-spent chiefly on the digits of the intermediate sets, which :data:`LOOSE_RTOL` no longer
-asks for. GMRES iterations, fine grid / all levels, viscoelastic against elastic (one
-BLAS thread): 155 x 155 67 / 151 against 48 / 91 (1.40 / 1.66) -> 25 / 65 against 21 /
-47 (1.19 / 1.38); 77 x 77 53 / 105 against 39 / 73 (1.36 / 1.44) -> 23 / 44 against 18
-/ 36 (1.28 / 1.22); solve time viscoelastic / elastic 0.94 and 1.07; each solve takes
-0.55-0.70 of its time with every step tight, no guess from the coarse forces and no
-coarse level of even-sized grids (CPU, median of 7 pairs, on a loaded machine). At 155
-x 155 the viscoelastic contact, the smaller, has a 20 x 20 level (6 iterations) where
-the elastic one reaches that grid's edge and starts its 39 x 39 level from every
-reachable node (the failed level's iterations are in no record). In steps, at 155 x 155
-(elastic / viscoelastic, fine grid): the loose steps 46 -> 21 and 64 -> 25; the coarse
-forces as the first guess 22 -> 21 and 28 -> 25 (with every step tight 48 -> 46, 67 ->
-64); on the even-sized 78 x 78 level, a coarse level of its own (39 x 39, instead of
-every reachable node as the first set) and its set widened along odd-sized axes only,
-22 -> 12 and 37 -> 17 there.
+preconditioner), to save about three. With every step solved to ``rtol``, the
+viscoelastic solve spends its extra iterations on digits of intermediate sets that the
+next step discards; :data:`LOOSE_RTOL` does not ask for them. GMRES iterations, fine grid
+/ all levels, viscoelastic against elastic (one BLAS thread): 25 / 65 against 21 / 47 at
+155 x 155 (1.19 / 1.38), 23 / 44 against 18 / 36 at 77 x 77 (1.28 / 1.22). With every
+step to ``rtol``, no guess from the coarse forces and no coarse level of even-sized grids
+they are 67 / 151 against 48 / 91 and 53 / 105 against 39 / 73, and a solve takes
+1.4-1.8 times as long (CPU, median of 7 pairs). Each measure on the fine grid at 155 x 155
+(elastic / viscoelastic, iterations without it and with it): the loose steps 46 / 64 and
+21 / 25; the coarse forces as the first guess 22 / 28 and 21 / 25; on the even-sized
+78 x 78 level, a coarse level of its own (instead of every reachable node as the first
+set), its set widened along odd-sized axes only, 22 / 37 and 12 / 17. The all-level ratio
+at 155 x 155 counts a 20 x 20 level (6 iterations) that only the viscoelastic solve has:
+the elastic contact reaches that grid's edge, and a failed level's iterations are in no
+record.
 
 A penetrating node joins the next set only if it penetrates under the compressive forces
 alone (:func:`_lifted`, one product on the grid when a step both drops and adds): a tensile
@@ -89,7 +88,8 @@ from typing import Callable
 import numpy as np
 
 from .coarse_levels import coarse_grid, coarse_kernel, coarse_level, dilated, prolonged, restricted, upsampled
-from .linear import LinearSolver, bordered, eliminate
+from .linear import LinearSolver
+from .normal_system import NormalSystem
 from .operator import ComplianceOperator
 from .result import SHARED_SCALARS, ContactFigures, NormalContact, SolveRecord, grid_summary, pressure_centroid_x
 
@@ -122,99 +122,6 @@ def edge_nodes(shape: tuple[int, int]) -> np.ndarray:
     if shape[0] > 1:  # a single row is a line contact (plane strain): its two ends only
         edge[0, :] = edge[-1, :] = True
     return edge.ravel()
-
-
-class NormalSystem:
-    """The linear problem of one trial contact set ``idx`` (flat node indices): under
-    load control the bordered system ``C_AA F_A - d 1 = -s_A``, ``diag sum F_A = diag P``
-    (both rows in metres), under displacement control ``C_AA F_A = d - s_A``; for
-    :class:`bem.linear.LinearSolver` (dense matrix, FFT product and, on the force part,
-    the inverse of the kernel's wrapped circulant as preconditioner, both on the set's
-    bounding box ``box``)."""
-
-    def __init__(self, op: ComplianceOperator, idx: np.ndarray, s_A: np.ndarray, load: float | None,
-                 indentation: float | None):
-        self.op, self.idx, self.load, self.indentation = op, idx, load, indentation
-        self.m = idx.size
-        self.bordered = load is not None
-        self.n = self.m + self.bordered
-        self.diag = float(op.kernel[op.grid.nodes_y - 1, op.grid.nodes_x - 1])
-        self.b = np.concatenate([-s_A, [self.diag * load]]) if self.bordered else indentation - s_A
-        # products and preconditioner on the set's bounding box (ComplianceOperator.block)
-        shape, self._local = _box(idx, op.grid.shape)
-        self.box = op.block(shape)
-        self._full = np.zeros(shape[0] * shape[1])
-        self._pre = None
-        if not self.box.has_circulant_inverse:
-            self.precondition = None
-
-    def dense(self) -> np.ndarray:
-        K = self.op.dense(self.idx)
-        if not self.bordered:
-            return K
-        m = self.m
-        M = np.zeros((m + 1, m + 1))
-        M[:m, :m] = K
-        M[:m, m] = -1.0
-        M[m, :m] = self.diag
-        return M
-
-    def _spread(self, v):
-        self._full[:] = 0.0
-        self._full[self._local] = v[:self.m]
-        return self._full.reshape(self.box.grid.shape)
-
-    def matvec(self, v):
-        out = self.box.apply(self._spread(v)).ravel()[self._local]
-        if not self.bordered:
-            return out
-        return np.concatenate([out - v[self.m], [self.diag * v[:self.m].sum()]])
-
-    def precondition(self, v):
-        """The inverse of the kernel's wrapped circulant on the forces; under load
-        control ``d`` eliminated by its Schur complement (:func:`bem.linear.bordered`;
-        passing its row on instead cost 9-20 % more GMRES iterations: section 11 at
-        257 x 257 70 / 53 / 46 -> 64 / 45 / 36 on its 257, 129 and 65 levels)."""
-        if self._pre is None:
-            forces = self._forces
-            if self.bordered:
-                diag = self.diag
-
-                def load_row(x):
-                    return diag * x.sum(0, keepdims=True)
-
-                parts = eliminate(forces, -np.ones((self.m, 1)), load_row)
-                forces = bordered(forces, load_row, parts) if parts is not None else (
-                    lambda v: np.concatenate([self._forces(v[:self.m]), v[self.m:]]))
-            self._pre = forces
-        return self._pre(v)
-
-    def _forces(self, v):
-        return self.box.circulant_inverse(self._spread(v)).ravel()[self._local]
-
-    def split(self, x: np.ndarray) -> tuple[np.ndarray, float]:
-        """Forces on the set and the indentation from the solution vector."""
-        return (x[:self.m], float(x[self.m])) if self.bordered else (x, self.indentation)
-
-
-#: a contact set's bounding box is widened to a multiple of this many nodes a side (within
-#: the grid), so that the boxes of successive sets share their operators (each new shape
-#: costs two transforms of the kernel). The 13 sets of the viscoelastic solve of
-#: ``benchmarks/bem_viscoelastic_rolling.py`` at 155 x 155 (both levels) ask 9 shapes at 1
-#: node, 5 at 8, 4 at 16; the solve's CPU time is the same within the noise (0.14 s)
-BOX_STEP = 8
-
-
-def _box(idx: np.ndarray, shape: tuple[int, int]) -> tuple[tuple[int, int], np.ndarray]:
-    """The block of the grid (``shape``) that holds the flat node indices ``idx``: its shape,
-    each side the set's extent rounded up to :data:`BOX_STEP` nodes (at most the grid's),
-    and ``idx`` as flat indices into it."""
-    Ky, Kx = shape
-    j, i = np.divmod(idx, Kx)
-    by = min(Ky, -(-(int(j.max()) - int(j.min()) + 1) // BOX_STEP) * BOX_STEP)
-    bx = min(Kx, -(-(int(i.max()) - int(i.min()) + 1) // BOX_STEP) * BOX_STEP)
-    j0, i0 = min(int(j.min()), Ky - by), min(int(i.min()), Kx - bx)
-    return (by, bx), (j - j0) * bx + (i - i0)
 
 
 #: contact sets up to this many nodes are solved by dense LU, larger ones by GMRES (FFT
