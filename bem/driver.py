@@ -29,10 +29,9 @@ from .contact import DENSE_LIMIT, ContactAtEdge, solve_normal
 from .energy import layer_power
 from .grid import Grid
 from .operator import ComplianceOperator
-from .plane import LINE_DENSE_LIMIT, LineContact, LineGrid, edges_along, line_dissipation, line_kernels
-from .problem import Problem, check_kernel_memory, compute_kernels
+from .plane import LINE_DENSE_LIMIT, LineContact, LineGrid, edges_along, line_dissipation
+from .problem import Problem, compute_kernels, line_tables
 from .result import NormalContact
-from .speed import check_subsonic
 from .threads import with_one_blas_thread
 
 if TYPE_CHECKING:
@@ -170,21 +169,6 @@ def _kernel(p: Problem, progress, energy: bool) -> tuple[dict, float]:
     if not p.plane_strain:
         return compute_kernels(p, ("ww",), progress, power=energy)
     return line_tables(p, ("ww",), progress)
-
-
-def line_tables(p: Problem, blocks, progress) -> tuple[dict, float]:
-    """The line kernels (:func:`bem.plane.line_kernels`) of ``blocks`` for a plane-strain
-    problem ``p``, and their seconds, with one progress line; raises ``ValueError`` at or
-    above the shear-wave speed or beyond the machine's memory."""
-    check_subsonic(p.layer, p.loading.speed)
-    check_kernel_memory(p.grid, blocks)
-    t0 = time.perf_counter()
-    tables = line_kernels(p.grid, p.layer, p.loading.speed, tuple(blocks))
-    seconds = time.perf_counter() - t0
-    if progress:
-        which = "" if tuple(blocks) == ("ww",) else f", {len(tuple(blocks))} blocks"
-        progress(f"line compliance{which}: {p.grid.nodes} nodes, Nt = {p.grid.truncation}, {seconds:.2f} s")
-    return tables, seconds
 
 
 def _wider(p: Problem) -> Grid | LineGrid | None:

@@ -14,14 +14,14 @@ from ._checks import real
 from .grid import Grid
 from .layer import Layer
 from .indenters import LineCylinder
-from .plane import LineGrid
+from .plane import LineGrid, line_kernels
 from .energy import dissipates, power_key
 from .spectral import influence_kernels, kernels_with_power
 from .speed import RAYLEIGH_RATIO, check_subsonic  # noqa: F401  (public here too)
 from .threads import with_one_blas_thread
 
 __all__ = ["Loading", "Problem", "check_subsonic", "compute_kernels", "auto_half_width", "kernel_memory",
-           "check_kernel_memory"]
+           "check_kernel_memory", "line_tables"]
 
 
 def kernel_memory(grid, blocks=("ww",)) -> int:
@@ -218,3 +218,18 @@ def compute_kernels(problem: Problem, blocks, progress: Callable[[str], None] | 
         progress(f"compliance ({what}): {p.grid.nodes_x} x {p.grid.nodes_y} nodes, "
                  f"Nt = {p.grid.truncation_x} x {p.grid.truncation_y}, {seconds:.2f} s")
     return kernels, seconds
+
+
+def line_tables(p: Problem, blocks, progress) -> tuple[dict, float]:
+    """The line kernels (:func:`bem.plane.line_kernels`) of ``blocks`` for a plane-strain
+    problem ``p``, and their seconds, with one progress line; raises ``ValueError`` at or
+    above the shear-wave speed or beyond the machine's memory."""
+    check_subsonic(p.layer, p.loading.speed)
+    check_kernel_memory(p.grid, blocks)
+    t0 = time.perf_counter()
+    tables = line_kernels(p.grid, p.layer, p.loading.speed, tuple(blocks))
+    seconds = time.perf_counter() - t0
+    if progress:
+        which = "" if tuple(blocks) == ("ww",) else f", {len(tuple(blocks))} blocks"
+        progress(f"line compliance{which}: {p.grid.nodes} nodes, Nt = {p.grid.truncation}, {seconds:.2f} s")
+    return tables, seconds

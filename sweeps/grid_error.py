@@ -7,7 +7,7 @@ refines the grid by 2 (e.g. ``[1e-3, 0.5e-3, 0.25e-3]`` m, in any order) gives t
 for every combination of its other axes: :func:`write_grid_error` writes
 ``grid-error.csv`` next to ``results.csv``, one row per combination and figure, with the
 figure at the finest spacing, its limit, its error and the order, by the same rule as
-``bem solve`` (:func:`sweeps.paper.grid_estimate`: :func:`bem.convergence.richardson` on
+``bem solve`` (:func:`grid_estimate`: :func:`bem.convergence.richardson` on
 the finest three spacings, the observed order when it lies in ``[0.5, 5]``, else three
 times the last change; with two spacings, first order assumed).
 
@@ -26,11 +26,11 @@ import csv
 import math
 from pathlib import Path
 
-from .paper import grid_estimate
 from .spec import Sweep
 from .table import RESULTS, as_float
 
-__all__ = ["GRID_ERROR", "SPACING_KEYS", "FIGURES", "spacing_axis", "grid_error_rows", "write_grid_error"]
+__all__ = ["GRID_ERROR", "SPACING_KEYS", "FIGURES", "grid_estimate", "spacing_axis", "grid_error_rows",
+           "write_grid_error"]
 
 #: the file written next to ``results.csv``
 GRID_ERROR = "grid-error.csv"
@@ -41,6 +41,31 @@ FIGURES = tuple(r for r in RESULTS if r not in ("mode", "mu", "speed", "load"))
 #: a refinement ratio within this relative tolerance of 2 counts as 2
 _RATIO_TOL = 1e-6
 
+
+
+def grid_estimate(values, ratio: float = 2.0):
+    """Limit and grid error of a figure from its values on grids refined by ``ratio``,
+    coarse to fine, as a :class:`bem.convergence.Convergence`. Three or more levels:
+    :func:`bem.convergence.richardson` on the finest three (the observed order; where it
+    is outside ``[0.5, 5]``, three times the last change). Two levels: first order
+    assumed (the frictional figures' order, docs/derivations.md): limit ``q2 + (q2 - q1)
+    / (ratio - 1)``, error ``|q2 - q1| / (ratio - 1)``, ``order = 1`` and ``asymptotic =
+    False`` (an assumption, not an observation).
+
+    Raises
+    ------
+    ValueError
+        Fewer than two values.
+    """
+    from bem.convergence import Convergence, richardson
+
+    q = [float(v) for v in values]
+    if len(q) < 2:
+        raise ValueError(f"a grid estimate needs at least 2 grids, got {len(q)}")
+    if len(q) >= 3:
+        return richardson(q[-3:], ratio)
+    step = (q[1] - q[0]) / (ratio - 1)
+    return Convergence(tuple(q), 1.0, q[1] + step, abs(step), False)
 
 def spacing_axis(sweep: Sweep) -> tuple[str, tuple] | tuple[None, str]:
     """``(key, spacings coarse to fine)`` of the sweep's first axis over the node spacing

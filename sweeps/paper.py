@@ -16,7 +16,7 @@ sweep's table (Zehil and Gavin 2013).
   with/without curves of figures 7 and 8).
 * Section 11.7: the speed of the rolling-resistance peak (fig. 10, :func:`peak_position`
   on ``log V``).
-* :func:`grid_estimate`: the limit and grid error of a figure from two or more grids
+* :func:`grid_estimate` (:mod:`sweeps.grid_error`): the limit and grid error of a figure from two or more grids
   halved in turn (docs/sweeps.md, "Figure 9 under each kinematics").
 
 Units: SI (N, m, m/s); shares are fractions (0.0155 for 1.55 %).
@@ -31,6 +31,7 @@ from pathlib import Path
 import numpy as np
 
 from .fits import Fit
+from .grid_error import grid_estimate  # noqa: F401  (public here too)
 from .report import curves
 from .table import as_float
 
@@ -147,31 +148,6 @@ def share_rise(rows: list[dict], thin: float = SHARE_RISE_THICKNESS[0], thick: f
     if any(v.size != 1 or not math.isfinite(v[0]) for v in pick.values()):
         return math.nan
     return float(pick[thick][0] / pick[thin][0])
-
-
-def grid_estimate(values, ratio: float = 2.0):
-    """Limit and grid error of a figure from its values on grids refined by ``ratio``,
-    coarse to fine, as a :class:`bem.convergence.Convergence`. Three or more levels:
-    :func:`bem.convergence.richardson` on the finest three (the observed order; where it
-    is outside ``[0.5, 5]``, three times the last change). Two levels: first order
-    assumed (the frictional figures' order, docs/derivations.md): limit ``q2 + (q2 - q1)
-    / (ratio - 1)``, error ``|q2 - q1| / (ratio - 1)``, ``order = 1`` and ``asymptotic =
-    False`` (an assumption, not an observation).
-
-    Raises
-    ------
-    ValueError
-        Fewer than two values.
-    """
-    from bem.convergence import Convergence, richardson
-
-    q = [float(v) for v in values]
-    if len(q) < 2:
-        raise ValueError(f"a grid estimate needs at least 2 grids, got {len(q)}")
-    if len(q) >= 3:
-        return richardson(q[-3:], ratio)
-    step = (q[1] - q[0]) / (ratio - 1)
-    return Convergence(tuple(q), 1.0, q[1] + step, abs(step), False)
 
 
 def curve(rows: list[dict], x: str, y: str, **fixed) -> tuple[np.ndarray, np.ndarray]:

@@ -33,19 +33,18 @@ def plain_quantity(quantity: str) -> str:
     return quantity.split("[", 1)[0]
 
 
-def unit(quantity: str, kind: str = "") -> tuple[str, float]:
+def unit(quantity: str, kind: str = "", own: dict | None = None) -> tuple[str, float]:
     """(unit, factor from SI) in which a gate's value and reference are shown.
 
     Lengths (m) in mm, pressures (Pa) in MPa, forces in N (N/m for the plane-strain kind
     ``rolling-2d``, whose loads and rolling resistances are per unit length); the
     pressure metrics of the stationary kinds are differences in units of the reference's
-    peak pressure (``of peak``); ``-`` for a dimensionless number. A kind may name its own
-    quantities' units in a module-level ``UNITS`` (quantity -> (unit, factor)).
+    peak pressure (``of peak``); ``-`` for a dimensionless number. ``own``: the kind's own
+    quantities' units (quantity -> (unit, factor)), which come first (a kind module's
+    ``UNITS``, in its Runs tables' units; :mod:`verification.pages` passes them).
     """
     q = plain_quantity(quantity)
-    from .kinds import KINDS  # the kinds import this module: looked up at call time
-
-    own = getattr(KINDS.get(kind), "UNITS", {})  # a kind's own quantities, in its Runs tables' units
+    own = own or {}
     if q in own:
         return own[q]
     if q in LENGTHS:
@@ -61,9 +60,9 @@ def unit(quantity: str, kind: str = "") -> tuple[str, float]:
     return "-", 1.0
 
 
-def shown(value, quantity: str, kind: str = "") -> str:
+def shown(value, quantity: str, kind: str = "", own: dict | None = None) -> str:
     """``value`` (SI) in the unit of :func:`unit`, six significant digits."""
-    _, factor = unit(quantity, kind)
+    _, factor = unit(quantity, kind, own)
     return fmt(None if value is None else value * factor)
 
 

@@ -90,8 +90,9 @@ def drift_table(drifts) -> Table | None:
 def _gate_cells(r: CaseResult, g: Gate) -> tuple:
     where = parameters(r.name, g.case, g.quantity)
     quantity = g.quantity.split("[", 1)[0] + (f" ({where})" if where else "")
-    return (quantity, g.method, g.against, g.level, shown(g.value, g.quantity, r.kind),
-            shown(g.reference, g.quantity, r.kind), unit(g.quantity, r.kind)[0], _sci(g.error, 2))
+    own = getattr(KINDS.get(r.kind), "UNITS", {})  # a kind's own quantities' units
+    return (quantity, g.method, g.against, g.level, shown(g.value, g.quantity, r.kind, own),
+            shown(g.reference, g.quantity, r.kind, own), unit(g.quantity, r.kind, own)[0], _sci(g.error, 2))
 
 
 def gate_rows(r: CaseResult) -> list[tuple]:

@@ -12,13 +12,12 @@ from typing import Callable
 import numpy as np
 
 from ..contact import ContactError, NormalContact, coarse_grid, coarse_solution, solve_normal
-from ..driver import line_tables
 from ..energy import layer_power
 from .model import Friction, FrictionalContact, FrictionNotConverged, FrictionRecord, LoadingUnreachable
 from ..kinematics import indenter_radius, rolling_geometry
 from ..operator import one_worker
 from ..plane import LINE_DENSE_LIMIT, LineGrid, line_dissipation
-from ..problem import Problem, compute_kernels
+from ..problem import Problem, compute_kernels, line_tables
 from ..spectral import BLOCKS
 from ..threads import with_one_blas_thread
 from .active_set import ActiveSetResult, LinearSolves, run_active_set
