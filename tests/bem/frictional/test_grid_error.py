@@ -4,18 +4,23 @@ import math
 
 import pytest
 
-from bem import Grid, Layer, Loading, Problem, Sphere, ThreeParameterSolid
+from bem import Grid, Layer, LineGrid, Loading, Problem, Sphere, ThreeParameterSolid
 from bem.frictional import Friction, solve_friction
 from bem.frictional.grid_error import SCALARS, coarsened_grid, estimate_grid_error
 
 
-def test_coarsened_grid_keeps_region_periods_and_truncations():
-    g = Grid.centred((0.25e-3, 0.25e-3), (0.2, 0.2), (500, 500), (5e-3, 5e-3))
-    for factor, nodes in ((1, 41), (2, 21), (4, 11)):
+def test_coarsened_grid_keeps_region_periods_and_the_modes_per_node():
+    """The coarse level is the case written on the coarser grid: its truncation divided by
+    the factor, so ``N_t a`` is the fine grid's (rounded to whole modes)."""
+    g = Grid.centred((0.25e-3, 0.25e-3), (0.2, 0.3), (500, 750), (5e-3, 5e-3))
+    for factor, nodes, modes in ((1, 41, (500, 750)), (2, 21, (250, 375)), (4, 11, (125, 188))):
         c = coarsened_grid(g, factor)
         assert (c.nodes_x, c.nodes_y) == (nodes, nodes)
         assert c.spacing_x == g.spacing_x * factor and c.x[-1] == pytest.approx(g.x[-1], rel=1e-12)
-        assert (c.period_x, c.truncation_y) == (g.period_x, g.truncation_y)
+        assert (c.period_x, c.period_y) == (g.period_x, g.period_y)
+        assert (c.truncation_x, c.truncation_y) == modes
+    line = LineGrid.centred(0.1e-3, 0.2, 3000, 4e-3)
+    assert coarsened_grid(line, 4).truncation == 750 and coarsened_grid(line, 4).nodes == 21
     with pytest.raises(ValueError, match="factor must be an integer >= 1, got 0"):
         coarsened_grid(g, 0)
 
