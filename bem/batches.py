@@ -8,10 +8,11 @@ threads share the batches (NumPy's transforms and matrix products release the GI
 from __future__ import annotations
 
 import functools
-import os
 from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
+
+from .threads import cores
 
 __all__ = ["CHUNK", "in_batches", "real_chunk"]
 
@@ -39,7 +40,7 @@ def _keep_heap() -> None:
 
 def in_batches(rows: int, work, chunk: int = CHUNK) -> None:
     """``work(start)`` for every batch of ``chunk`` rows (``start = 0, chunk, ...`` below
-    ``rows``), on two threads."""
+    ``rows``), on two threads (one where the process may use one core, :func:`bem.threads.cores`)."""
     _keep_heap()
-    with ThreadPoolExecutor(max_workers=min(2, os.cpu_count() or 1)) as pool:
+    with ThreadPoolExecutor(max_workers=min(2, cores())) as pool:
         list(pool.map(work, range(0, rows, chunk)))

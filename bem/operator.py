@@ -37,6 +37,7 @@ import numpy as np
 from . import fft as sfft
 
 from .grid import Grid
+from .threads import cores
 
 __all__ = ["ComplianceOperator", "THREADED_FROM", "fft_workers", "one_worker", "periodic_size", "BLOCKS_KEPT", "Block"]
 
@@ -57,9 +58,10 @@ _ONE_WORKER = 0  # depth of the one_worker() blocks open
 
 
 def fft_workers(shape: tuple[int, int]) -> int:
-    """Threads for the transforms of an embedding of ``shape``: ``-1`` (every core) from
-    :data:`THREADED_FROM` points on, 1 below, and 1 inside :func:`one_worker`."""
-    return -1 if shape[0] * shape[1] >= THREADED_FROM and not _ONE_WORKER else 1
+    """Threads for the transforms of an embedding of ``shape``: every core the process may
+    use (:func:`bem.threads.cores`) from :data:`THREADED_FROM` points on, 1 below, and 1
+    inside :func:`one_worker`."""
+    return cores() if shape[0] * shape[1] >= THREADED_FROM and not _ONE_WORKER else 1
 
 
 def periodic_size(nodes: int) -> int:

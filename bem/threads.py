@@ -11,6 +11,11 @@ OpenBLAS's default two, the process computing the nine kernels at 0.1 mm 2.1 s a
 libraries already loaded (numpy's and scipy's); environment variables act only before a
 library loads. A user who sets ``OPENBLAS_NUM_THREADS``, ``MKL_NUM_THREADS`` or
 ``OMP_NUM_THREADS`` keeps the count they chose.
+
+The BEM's own threads (the kernels' two batch threads, the transforms of large grids, the
+frictional solver's second thread) number at most :func:`cores`: the cores the process
+may run on (its CPU affinity: a job pinned to one core, or a container's share), and no
+more than ``OMP_NUM_THREADS`` when it is set, the usual way to give a job its threads.
 """
 
 from __future__ import annotations
@@ -19,7 +24,7 @@ import functools
 import os
 from contextlib import nullcontext
 
-__all__ = ["THREAD_VARIABLES", "blas_threads_chosen", "one_blas_thread", "with_one_blas_thread"]
+__all__ = ["THREAD_VARIABLES", "blas_threads_chosen", "one_blas_thread", "with_one_blas_thread", "cores"]
 
 #: environment variables by which a user chooses the BLAS thread count themselves
 THREAD_VARIABLES = ("OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS", "OMP_NUM_THREADS")
@@ -46,3 +51,17 @@ def with_one_blas_thread(function):
         with one_blas_thread():
             return function(*args, **kwargs)
     return limited
+
+
+def cores() -> int:
+    """How many threads the BEM may run at once (>= 1): the cores of the process's CPU
+    affinity (``os.sched_getaffinity``; ``os.cpu_count()`` where the system has none), at
+    most ``OMP_NUM_THREADS`` when that is a positive integer."""
+    try:
+        n = len(os.sched_getaffinity(0))
+    except (AttributeError, OSError):
+        n = os.cpu_count() or 1
+    limit = os.environ.get("OMP_NUM_THREADS", "").strip()
+    if limit.isdigit() and int(limit) > 0:
+        n = min(n, int(limit))
+    return max(1, n)

@@ -36,12 +36,11 @@ at the cost of two FFTs of the contact's box: GMRES iterations on converged stat
 
 from __future__ import annotations
 
-import os
-
 import numpy as np
 
 from .model import FrictionNotConverged
 from ..linear import bordered, eliminate
+from ..threads import cores
 from . import toeplitz
 from .options import SolverOptions
 from .system import SetSystem
@@ -187,7 +186,7 @@ class LinePreconditioner:
         dt, diag = self.dtype, system.diag
         ex, ey, kk = (a.astype(dt) for a in (system.dir_x, system.dir_y, system.slope))
         size = spec_n.nbytes + spec_t.nbytes
-        two = self.threads and (os.cpu_count() or 1) > 1 and size >= self.options.thread_from
+        two = self.threads and cores() > 1 and size >= self.options.thread_from
         box, spectra = system.box, self._row_filter(system)
 
         def correct(Z, c, qs):
@@ -297,7 +296,7 @@ class LinePreconditioner:
         if todo.size:
             # the missing columns, one row of positions per run length (padded), lengths with
             # about as many missing columns together
-            two = self.threads and (os.cpu_count() or 1) > 1
+            two = self.threads and cores() > 1
             n_of, pos_of = np.divmod(uniq[todo], M)
             lengths, per = np.unique(n_of, return_counts=True)
             order = np.argsort(per, kind="stable")[::-1]
@@ -390,7 +389,7 @@ class LinePreconditioner:
             k = int(load[1] < load[0])
             halves[k].append(groups[i])
             load[k] += cost[i]
-        job = toeplitz.second_thread().submit(invert, halves[1]) if self.threads and (os.cpu_count() or 1) > 1 else None
+        job = toeplitz.second_thread().submit(invert, halves[1]) if self.threads and cores() > 1 else None
         invert(halves[0] if job is not None else groups)
         if job is not None:
             job.result()

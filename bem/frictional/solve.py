@@ -19,7 +19,7 @@ from ..operator import one_worker
 from ..plane import LINE_DENSE_LIMIT, LineGrid, line_dissipation
 from ..problem import Problem, compute_kernels, line_tables
 from ..spectral import BLOCKS
-from ..threads import with_one_blas_thread
+from ..threads import cores, with_one_blas_thread
 from .active_set import ActiveSetResult, LinearSolves, run_active_set
 from .loading import check_reachable, constraint
 from .operators import RollingOperators
@@ -194,7 +194,7 @@ def _first_solves(setup: RollingSetup, friction: Friction, normal: NormalContact
     ww, profile = ops.op("ww"), setup.profile
     kw = dict(load=setup.load, indentation=setup.indentation, dense_limit=friction.dense_limit // 3,
               rtol=options.start_rtol if mu > 0 else options.frictionless_rtol)
-    if normal is None and mu > 0 and g.nodes_x * g.nodes_y >= options.overlap_from:
+    if normal is None and mu > 0 and g.nodes_x * g.nodes_y >= options.overlap_from and cores() > 1:
         below = coarse_solution(ww, profile, **kw)
         if below is not None:
             # the grid's field spectra, which the first fine measure reads, built by the

@@ -5,7 +5,7 @@ import pytest
 from threadpoolctl import threadpool_info, threadpool_limits
 
 from bem import Elastic, Grid, Layer, Loading, Paraboloid, Problem, solve
-from bem.threads import THREAD_VARIABLES
+from bem.threads import THREAD_VARIABLES, cores
 
 
 def _blas_threads() -> set[int]:
@@ -55,3 +55,20 @@ def test_the_grid_error_solves_run_their_blas_on_one_thread(two_blas_threads):
     estimate_grid_error(problem, friction, fine=fine, progress=lambda line: seen.update(_blas_threads()))
     assert seen == {1}
     assert _blas_threads() == {2}
+
+
+def test_the_cores_a_process_may_use(monkeypatch):
+    """:func:`bem.threads.cores`: the CPU affinity, at most ``OMP_NUM_THREADS`` when it is a
+    positive integer (ignored otherwise); a process pinned to one core runs one thread of
+    its own (the transforms of a large grid on one worker)."""
+    from bem.operator import fft_workers
+
+    monkeypatch.delenv("OMP_NUM_THREADS", raising=False)
+    monkeypatch.setattr("os.sched_getaffinity", lambda pid: {0, 1, 2, 3})
+    assert cores() == 4
+    for value, expected in (("2", 2), ("8", 4), ("0", 4), ("two", 4), (" 1 ", 1)):
+        monkeypatch.setenv("OMP_NUM_THREADS", value)
+        assert cores() == expected, value
+    monkeypatch.delenv("OMP_NUM_THREADS")
+    monkeypatch.setattr("os.sched_getaffinity", lambda pid: {3})
+    assert cores() == 1 and fft_workers((1000, 1000)) == 1
