@@ -46,8 +46,8 @@ SETUP = "python3 -m venv "
 NOT_MIRRORED = {".git", ".venv", "out", "verification-report", "verification-report-example"}
 # examples/*.toml slower than ~10 s at their own settings, and the overrides that keep the
 # check fast, used when no README line already solves the file at its own settings (the
-# README's friction line does: 12-15 s on the 2-core machine these tests were timed on,
-# 16-20 s loaded; with these overrides about 5 s).
+# README's friction line does: 1.6 s with its plot and grid error on the 2-core machine
+# these tests were timed on, load 1; with these overrides 0.6 s).
 SPEEDUPS = {"paper-section11-friction.toml": ["grid.spacing=0.5e-3", "grid.half_width=5.0e-3"]}
 
 
