@@ -1,14 +1,14 @@
-"""Mode sums of the half-space's real symbols ``1 / k`` and ``1 / k^3`` over ``n``.
+"""Mode sums over ``n`` of the half-space's real symbols (``1 / k``, ``nu_x^a / k^p``).
 
 Without inertia a deep mode's compliance is ``1 / G(omega_m)`` times a real function of
 ``nu`` built from ``1 / k`` and ``nu_x^a nu_y^b / k^3`` (:func:`halfspace_symbols`);
-with a little inertia the normal compliance is ``(1 + 3/4 eps) / (2 G k)``, ``eps = rho V^2
-nu_x^2 / (G k^2)`` (:func:`bem.layer.normal_compliance_outer`), the same two powers with
-factors of the row ``m``. So every deep-mode kernel is a sum over ``m`` of row factors
-times the sums over ``n`` of two real arrays, ``1 / k`` and ``1 / k^3``, weighted by
-functions of ``n`` alone: the weights go into the trigonometric table (or the chirp) once,
-the factors of ``m`` onto the ``(rows, 2 K_y - 1)`` partial sums, and no complex symbol of
-every mode is formed. The sums are the terms of :func:`bem.mode_sums.over_n`, reordered.
+with a little inertia every block is a short series in ``eps = rho V^2 nu_x^2 / (G k^2)``
+(:data:`INERTIA_SERIES`) of real arrays ``nu_x^a nu_y^b / k^p`` times factors of the row
+``m``. So every deep-mode kernel is a sum over ``m`` of row factors times the sums over
+``n`` of a few real arrays, weighted by functions of ``n`` alone: the weights go into the
+trigonometric table (or the chirp) once, the factors of ``m`` onto the ``(rows, 2 K_y -
+1)`` partial sums, and no complex symbol of every mode is formed. The sums are the terms
+of :func:`bem.mode_sums.over_n`, reordered.
 On a square grid with one real modulus the symbols are symmetric in ``(m, n)`` (or
 antisymmetric) and :func:`square_sums` sums the modes ``n >= m`` alone.
 """
@@ -20,7 +20,8 @@ import numpy as np
 from .batches import in_batches
 from .mode_sums import cos_sums, lattice_half, over_n, sin_sums, trig_table
 
-__all__ = ["HALFSPACE_KH", "halfspace_symbols", "inverse_powers", "even_sums", "odd_sum", "square_sums"]
+__all__ = ["HALFSPACE_KH", "INERTIA_SERIES", "halfspace_symbols", "inverse_powers", "even_sums", "odd_sum",
+           "series_arrays", "series_factor", "series_sums", "square_sums"]
 
 #: ``k H`` beyond which a mode does not see the base: the layer's compliance is the
 #: half-space's to ``exp(-k H) = 9e-27`` (:mod:`bem.layer` switches at 50)
@@ -60,6 +61,104 @@ def _powers_of_k2(k2: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     inv_k[zero] = 0.0
     inv_k3 = np.divide(inv_k, k2, out=k2)
     return inv_k, inv_k3
+
+
+#: ``G C_PQ`` of a deep mode with a little inertia, ``eps = c nu_x^2 / k^2``, ``c = rho V^2 /
+#: G(omega_m)`` (-): block -> terms ``(a, p, odd, (c0, c1, ...))``, each the real array ``X^a /
+#: k^p`` (times ``Y`` when ``odd``; ``X = nu_x``, ``Y = nu_y``, all of the scale of ``1 / k``)
+#: times ``c0 + c1 c + c2 c^2 + ...``. The blocks of order one to first order in ``eps``
+#: (the next term below ``3/8 eps^2`` of ``1 / k``: 3.7e-13 at ``eps = 1e-6``); the
+#: normal-tangential ones, ``i nu_x (eps / 8 + 5 eps^2 / 32 + 11 eps^3 / 64) / k^2`` (or
+#: ``nu_y``), to third, the next term ``95/512 eps^4`` (``1.5 eps^3`` of the block's own
+#: size) (``docs/derivations.md``, "Deep modes with a little inertia").
+INERTIA_SERIES = {
+    "ww": ((0, 1, False, (0.5,)), (2, 3, False, (0, 0.375))),
+    "uu": ((0, 1, False, (1,)), (2, 3, False, (-0.5, 0.5)), (4, 5, False, (0, -0.375))),
+    "vv": ((0, 1, False, (0.5,)), (2, 3, False, (0.5, 0.125)), (4, 5, False, (0, 0.375))),
+    "uv": ((1, 3, True, (-0.5,)), (3, 5, True, (0, -0.375))),
+    "wu": ((3, 4, False, (0, 0.125j)), (5, 6, False, (0, 0, 0.15625j)), (7, 8, False, (0, 0, 0, 0.171875j))),
+    "wv": ((2, 4, True, (0, 0.125j)), (4, 6, True, (0, 0, 0.15625j)), (6, 8, True, (0, 0, 0, 0.171875j))),
+}
+INERTIA_SERIES["vu"] = INERTIA_SERIES["uv"]
+INERTIA_SERIES["uw"] = tuple((a, p, o, tuple(-x for x in cs)) for a, p, o, cs in INERTIA_SERIES["wu"])
+INERTIA_SERIES["vw"] = tuple((a, p, o, tuple(-x for x in cs)) for a, p, o, cs in INERTIA_SERIES["wv"])
+
+
+def series_arrays(nu_x: np.ndarray, nu_y: np.ndarray, keys) -> np.ndarray:
+    """The real arrays ``X^a / k^p`` (m^(p - a)) of the :data:`INERTIA_SERIES` terms' ``keys``
+    ``(a, p, odd)`` on the outer grid ``nu_x[:, None], nu_y[None, :]`` (rad/m), stacked in the
+    order of ``keys``: ``(len(keys), rows, columns)``; 0 at ``k = 0`` (the factor ``Y`` of the
+    odd terms goes into the sums' weight). Every ``p - a`` is 1 or 2: ``(X / k)^a / k^(p -
+    a)``, no power of ``k`` that could overflow."""
+    inv_k, inv_k2 = _powers_of_k2(np.add.outer(nu_x * nu_x, nu_y * nu_y))  # 1 / k, 1 / k^3
+    np.multiply(inv_k, inv_k, out=inv_k2)  # 1 / k^2
+    out = np.empty((len(keys), *inv_k.shape))
+    cos = {1: nu_x[:, None] * inv_k}  # X / k
+    for i, (a, p, _) in enumerate(keys):
+        tail = inv_k if p - a == 1 else inv_k2
+        for j in range(2, a + 1):
+            if j not in cos:
+                cos[j] = cos[j - 1] * cos[1]
+        if a:
+            np.multiply(cos[a], tail, out=out[i])
+        else:
+            out[i] = tail
+    return out
+
+
+def series_factor(coefs, G: np.ndarray, rho_V2: float) -> np.ndarray:
+    """``(c0 + c1 c + c2 c^2 + ...) / G`` (1/Pa, complex) of the rows' moduli ``G`` (Pa), ``c =
+    rho V^2 / G``, ``rho V^2 = rho_V2`` (Pa)."""
+    c = rho_V2 / np.asarray(G, complex)
+    acc = np.zeros_like(c)
+    for a in reversed(coefs):
+        acc = acc * c + a
+    return acc / G
+
+
+def series_sums(arrays: np.ndarray, keys, weights, nu_y: np.ndarray, ratio: float, count: int,
+                chirp: bool) -> dict:
+    """``sum_{|n| <= N_t} A(m, |n|) w(n) exp(2 pi i ratio n dy)``, ``0 <= dy < count``, of
+    every :func:`series_arrays` ``A = arrays[i]`` of the ``keys[i] = (a, p, odd)`` and every
+    ``w`` of ``weights`` (functions of ``n``, 1/m), with the odd extension ``sign(n) Y`` for
+    ``odd`` (``Y = nu_y``, rad/m): real ``(rows, count)`` tables (``i`` times them for the odd
+    ones; even, or odd, in ``dy``) under ``(a, p, odd, index of w)``. By matrix products (the
+    arrays of one parity stacked, the weights side by side in the table), DCT-I / DST-I on a
+    lattice, or chirp-z, two arrays of one parity as one complex sum (they are of one
+    scale, ``1 / k``)."""
+    out = {}
+    _, rows, N = arrays.shape
+    Q = lattice_half(ratio, N, count) if chirp else None
+    for odd in (False, True):
+        mine = [i for i, key in enumerate(keys) if key[2] == odd]
+        if not mine:
+            continue
+        ws = [w * nu_y if odd else w for w in weights]
+        if not chirp:
+            stack = (arrays[mine[0] : mine[-1] + 1].reshape(-1, N) if mine == list(range(mine[0], mine[-1] + 1))
+                     else np.concatenate([arrays[i] for i in mine]))  # one product of the stacked arrays
+            T = trig_table(ratio, N, count, odd)
+            h = (stack @ np.concatenate([w[:, None] * T for w in ws], axis=1)).reshape(len(mine), rows, -1)
+            for j, i in enumerate(mine):
+                for iw in range(len(ws)):
+                    out[(*keys[i], iw)] = h[j][:, iw * count : (iw + 1) * count]
+        elif Q:
+            for i in mine:
+                for iw, w in enumerate(ws):
+                    out[(*keys[i], iw)] = (sin_sums(arrays[i] * w, Q, count) if odd
+                                           else cos_sums(arrays[i], Q, count, weight=w))
+        else:
+            for j in range(0, len(mine), 2):
+                pair = mine[j : j + 2]
+                AB = np.empty((rows, N), dtype=complex)
+                AB.real = arrays[pair[0]]
+                AB.imag = arrays[pair[1]] if len(pair) > 1 else 0.0
+                for iw, w in enumerate(ws):
+                    h = over_n(AB, odd, ratio, count, True, w)[:, count - 1 :]
+                    out[(*keys[pair[0]], iw)] = h.imag if odd else h.real
+                    if len(pair) > 1:
+                        out[(*keys[pair[1]], iw)] = -h.real if odd else h.imag
+    return out
 
 
 def even_sums(A: np.ndarray, B: np.ndarray | None, weight_n: np.ndarray, ratio: float, count: int,

@@ -7,13 +7,14 @@ by the 3x3 matrix ``C = T12(H) T22(H)^-1``:
 
     (w, u, v)(H) = C (sigma_z, tau_xz, tau_yz)(H)          [m/Pa]
 
-Two independent evaluations live here:
+Two independent evaluations:
 
 * :func:`surface_compliance_expm`, the paper's route (matrix exponential of eq. 45), kept
-  as the reference. For large ``kH`` the exponential overflows, so the layer is split
-  into sublayers of ``k h <= 8`` and the compliance is propagated upwards by the exact
-  composition ``C <- (T11 C + T12) (T21 C + T22)^-1`` (which starts from ``C = 0`` at the
-  bonded base and gives eq. 50 after one sublayer).
+  as the reference (in :mod:`bem.layer_reference`, with :func:`system_matrix`). For large
+  ``kH`` the exponential overflows, so the layer is split into sublayers of ``k h <= 8``
+  and the compliance is propagated upwards by the exact composition ``C <- (T11 C + T12)
+  (T21 C + T22)^-1`` (which starts from ``C = 0`` at the bonded base and gives eq. 50
+  after one sublayer).
 * :func:`surface_compliance`, a closed form. In axes along and across the wave vector the
   mode splits into an antiplane part ``u_T = tanh(qH) / (G q) tau_T`` and an in-plane part
   ``(w, u_L)`` whose vertical displacement obeys ``(D^2 - k^2)(D^2 - q^2) w = 0``, with
@@ -39,6 +40,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ._checks import real
+from .layer_reference import surface_compliance_expm, system_matrix
 
 __all__ = [
     "Layer", "system_matrix", "surface_compliance", "surface_compliance_expm", "normal_compliance",
@@ -99,66 +101,6 @@ class Layer:
         """``rho V^2`` (Pa) of the steady moving-frame inertia at ``speed`` (m/s); exactly 0
         without inertia, whatever the speed (no ``0 * inf``)."""
         return self.density * speed**2 if self.density > 0 else 0.0
-
-
-def system_matrix(nu_x, nu_y, G, rho_V2):
-    """The 6x6 matrix ``A`` of eq. 45 (with ``beta_y`` corrected, see module docstring).
-
-    Parameters
-    ----------
-    nu_x, nu_y : float
-        Wavenumbers (rad/m).
-    G : complex
-        Complex shear modulus ``G*(omega_m)`` (Pa).
-    rho_V2 : float
-        ``rho V^2`` (Pa): density (kg/m^3) times the squared speed (m/s)^2.
-
-    Returns
-    -------
-    ndarray, shape (6, 6), complex
-        ``dq/dz = A q`` for ``q = (w, u, v, sigma_z, tau_xz, tau_yz)`` (eq. 43).
-    """
-    G = complex(G)
-    inertia = rho_V2 * nu_x**2
-    bx = (4 * nu_x**2 + nu_y**2) * G - inertia
-    by = (nu_x**2 + 4 * nu_y**2) * G - inertia
-    bxy = 3 * nu_x * nu_y * G
-    ix, iy = 1j * nu_x, 1j * nu_y
-    return np.array(
-        [
-            [0, -ix, -iy, 0, 0, 0],
-            [-ix, 0, 0, 0, 1 / G, 0],
-            [-iy, 0, 0, 0, 0, 1 / G],
-            [-inertia, 0, 0, 0, -ix, -iy],
-            [0, bx, bxy, -ix, 0, 0],
-            [0, bxy, by, -iy, 0, 0],
-        ],
-        dtype=complex,
-    )
-
-
-def surface_compliance_expm(nu_x, nu_y, G, rho_V2, H, max_kh=8.0):
-    """Reference compliance ``T12 T22^-1`` (eq. 50) from the matrix exponential.
-
-    Parameters as in :func:`surface_compliance` but scalars only; ``max_kh`` is the largest
-    ``k h`` of one sublayer (the composition is exact, so it only guards overflow).
-
-    Returns
-    -------
-    ndarray, shape (3, 3), complex
-        Maps ``(sigma_z, tau_xz, tau_yz)`` (Pa) to ``(w, u, v)`` (m).
-    """
-    from scipy.linalg import expm  # the reference route only: its import costs the solvers 0.17 s
-
-    k = float(np.hypot(nu_x, nu_y))
-    scale = max(k, abs(np.sqrt(complex(k * k - rho_V2 * nu_x**2 / complex(G)))))
-    n_sub = max(1, int(np.ceil(scale * H / max_kh)))
-    T = expm(system_matrix(nu_x, nu_y, G, rho_V2) * (H / n_sub))
-    T11, T12, T21, T22 = T[:3, :3], T[:3, 3:], T[3:, :3], T[3:, 3:]
-    C = np.zeros((3, 3), dtype=complex)
-    for _ in range(n_sub):
-        C = np.linalg.solve((T21 @ C + T22).T, (T11 @ C + T12).T).T
-    return C
 
 
 # ---------------------------------------------------------------------------------------
@@ -325,12 +267,15 @@ def _wave_frame_large(k, q, H):
     return c_zz, c_zL_k, c_Lz_k, c_LL
 
 
-def _wave_frame_halfspace(k, q):
+def _wave_frame_halfspace(k, q, d):
     """In-plane compliances of a half-space (``kH, Re(q) H > 50``: the base terms of
     :func:`_wave_frame_large` are below ``exp(-50)``), times ``G``. ``R`` is the
-    incompressible Rayleigh function ``q^3 + k q^2 + 3 k^2 q - k^3`` (``4 k^3`` at rest)."""
+    incompressible Rayleigh function ``q^3 + k q^2 + 3 k^2 q - k^3`` (``4 k^3`` at rest);
+    ``k - q = d / (k + q)`` from ``d = k^2 - q^2 = rho V^2 nu_x^2 / G`` (the difference
+    itself would keep ``1e-16 k`` of a coupling of order ``eps k``)."""
     R = q * (q * (q + k) + 3 * k * k) - k**3
-    return k * (k + q) / R, 1j * (k - q) / R, -1j * (k - q) / R, q * (q + k) / R
+    k_q = d / (k + q)
+    return k * (k + q) / R, 1j * k_q / R, -1j * k_q / R, q * (q + k) / R
 
 
 #: ``k H`` beyond which (with ``Re(q) H``) a mode takes the half-space compliance
@@ -344,21 +289,22 @@ def _mode_parts(nu_x, nu_y, G, rho_V2, H):
         np.asarray(nu_x, float), np.asarray(nu_y, float), np.asarray(G, complex)
     )
     k = np.hypot(nu_x, nu_y)
-    q = np.sqrt(k * k - rho_V2 * nu_x**2 / G)  # principal root, Re q >= 0
+    d = rho_V2 * nu_x**2 / G  # k^2 - q^2
+    q = np.sqrt(k * k - d)  # principal root, Re q >= 0
     half = np.minimum(k, q.real) * H > DEEP_KH
     if half.all():  # the common case for the high modes: no masking
-        parts = [v / G for v in _wave_frame_halfspace(k, q)]
+        parts = [v / G for v in _wave_frame_halfspace(k, q, d)]
         return (k, *parts, 1 / (G * q))
     parts = [np.empty(k.shape, dtype=complex) for _ in range(4)]
     small = k * H <= 2.0
     regimes = (
         (small, _wave_frame_small, (H,)),
         (~small & ~half, _wave_frame_large, (H,)),
-        (half, _wave_frame_halfspace, ()),
+        (half, _wave_frame_halfspace, (d,)),
     )
     for mask, fn, extra in regimes:
         if mask.any():
-            for out, val in zip(parts, fn(k[mask], q[mask], *extra)):
+            for out, val in zip(parts, fn(k[mask], q[mask], *(e[mask] if np.ndim(e) else e for e in extra))):
                 out[mask] = val / G[mask]
 
     # antiplane part: tanh(qH) / (G q), even in q

@@ -19,7 +19,8 @@ from . import fft as sfft
 
 from .batches import in_batches
 
-__all__ = ["chirp_sum", "turns", "trig_table", "over_n", "over_m", "lattice_half", "cos_sums", "sin_sums"]
+__all__ = ["chirp_sum", "turns", "trig_table", "over_n", "over_m", "over_m_mirrored", "lattice_half", "cos_sums",
+           "sin_sums"]
 
 
 def chirp_sum(c: np.ndarray, ratio: float, j0: int, count: int, weight: np.ndarray | None = None,
@@ -133,6 +134,15 @@ def over_m(h: np.ndarray, ratio: float, count: int, chirp: bool) -> np.ndarray:
     if not re.any():
         return -(sin @ im).T
     return (cos @ re - sin @ im).T
+
+
+def over_m_mirrored(h: np.ndarray, ratio: float, count: int, chirp: bool, sign: float) -> np.ndarray:
+    """:func:`over_m` of the partial sums of the offsets ``dy >= 0`` alone (``h`` of ``(rows,
+    K_y)``), the rows ``dy < 0`` of the table ``(2 K_y - 1, 2 count - 1)`` by its parity
+    ``sign`` in ``dy`` (1 even, -1 odd): the same numbers as from every column (each
+    column's sum is its own), for half the transforms."""
+    K = over_m(h, ratio, count, chirp)
+    return np.concatenate([sign * K[:0:-1], K])
 
 
 @functools.lru_cache(maxsize=8)

@@ -16,10 +16,10 @@ symbols on the quarter ``m, n >= 0`` (reality ``g(-m, -n) = conj g(m, n)`` and p
 ``n``), summed over ``n`` then ``m`` (:mod:`bem.mode_sums`): by matrix products up to
 :data:`_MATMUL_NODES` nodes a side, above by chirp-z (Bluestein) transforms, exact for any
 ``a / L`` at a cost of ``O(N_t^2 log N_t)``, or by DCT-I / DST-I when ``L = 2 Q a`` with
-``Q >= N_t``. The deep modes of a layer without inertia (and of the normal block with a
-little) need no complex symbol: their sums are of the real ``1 / k`` and ``1 / k^3``
-(:mod:`bem.halfspace_sums`; on a square grid with one modulus, over the modes ``n >= m``
-alone). :func:`influence_kernels_direct` is the paper's route, summing every term for two
+``Q >= N_t``. The deep modes of a layer without inertia, or with a little (``rho V^2 /
+|G| <= 1e-6``), need no complex symbol: their sums are of real arrays, ``1 / k`` and ``1 /
+k^3`` without inertia (on a square grid with one modulus, over the modes ``n >= m`` alone),
+``nu_x^a nu_y^b / k^p`` with it (:mod:`bem.halfspace_sums`). ``vu = uv`` is computed once. :func:`influence_kernels_direct` is the paper's route, summing every term for two
 source nodes, kept as the slow reference.
 
 A kernel table ``K`` has shape ``(2 K_y - 1, 2 K_x - 1)``; ``K[dy + K_y - 1, dx + K_x - 1]``
@@ -36,9 +36,10 @@ import numpy as np
 
 from .batches import CHUNK, in_batches, real_chunk
 from .grid import Grid
-from .halfspace_sums import HALFSPACE_KH, even_sums, halfspace_symbols, inverse_powers, odd_sum, square_sums
+from .halfspace_sums import (HALFSPACE_KH, INERTIA_SERIES, even_sums, halfspace_symbols, inverse_powers, odd_sum,
+                             series_arrays, series_factor, series_sums, square_sums)
 from .layer import DEEP_KH, SERIES_EPS, Layer, compliance_blocks, normal_compliance_outer, surface_compliance
-from .mode_sums import chirp_sum, over_m, over_n
+from .mode_sums import chirp_sum, over_m_mirrored, over_n
 
 __all__ = ["BLOCKS", "chirp_sum", "end_weights", "influence_kernels", "influence_kernels_direct", "kernels_with_power",
            "mode_symbols"]
@@ -46,7 +47,11 @@ __all__ = ["BLOCKS", "chirp_sum", "end_weights", "influence_kernels", "influence
 #: block name -> (row, column) in the 3x3 compliance, rows/cols ordered (w, u, v)
 BLOCKS = {p + q: (i, j) for i, p in enumerate("wuv") for j, q in enumerate("wuv")}
 _ODD_IN_NY = {"wv", "vw", "uv", "vu"}
-
+_PARITY = {b: -1.0 if b in _ODD_IN_NY else 1.0 for b in BLOCKS}  # of a table in dy
+#: blocks that are another's times a sign at every mode (``docs/derivations.md`` section 13):
+#: every route computes ``vu = uv`` once; the closed form's ``uw`` and ``-wu`` round apart where
+#: exponentially small (a thick layer's base coupling), so only the series' deep modes share them
+_MIRRORED = {"uw": ("wu", -1.0), "vw": ("wv", -1.0), "vu": ("uv", 1.0)}
 
 
 def _check_blocks(blocks) -> tuple[str, ...]:
@@ -159,8 +164,9 @@ def _kernels_streamed(grid: Grid, layer: Layer, speed: float, blocks: tuple, pow
                 Hp[b][s] = over_n(sym, b in _ODD_IN_NY, md.ry, Ky, chirp, md.sy) * _power_rows(grid, md, s)
 
     in_batches(md.m.size, work)
-    return ({b: over_m(H.pop(b), md.rx, Kx, chirp) for b in blocks},
-            {b: over_m(Hp.pop(b), md.rx, Kx, chirp) for b in blocks} if power else {})
+    return ({b: over_m_mirrored(H.pop(b)[:, Ky - 1 :], md.rx, Kx, chirp, _PARITY[b]) for b in blocks},
+            {b: over_m_mirrored(Hp.pop(b)[:, Ky - 1 :], md.rx, Kx, chirp, _PARITY[b]) for b in blocks} if power else {})
+
 
 
 def _power_rows(grid: Grid, md: "_Modes", s: slice) -> np.ndarray:
@@ -177,7 +183,6 @@ def _moduli(layer: Layer, nu_x: np.ndarray, speed: float) -> np.ndarray:
 
 
 _MATMUL_NODES = 128  # up to this many nodes a side, trigonometric matrix products win
-_chirp_sum = chirp_sum  # the earlier private name
 
 
 def _kernels_halfspace_split(grid: Grid, layer: Layer, speed: float, blocks: tuple, power: bool = False):
@@ -232,7 +237,7 @@ def _kernels_halfspace_split(grid: Grid, layer: Layer, speed: float, blocks: tup
                 for b, t in square_sums(nu_x, wx, rx, Kx, parts, chunk).items()}
     else:
         in_batches(m.size, work, chunk)
-        half = {key: over_m(H.pop(key), rx, Kx, chirp) for key in list(H)}
+        half = {key: over_m_mirrored(H.pop(key)[:, Ky - 1 :], rx, Kx, chirp, _PARITY[key[1]]) for key in list(H)}
     for k in kinds:
         if "vv" in blocks:
             half[k, "vv"] = 3 * half[k, "ww"] - half[k, "uu"]
@@ -259,63 +264,78 @@ def _kernels_halfspace_split(grid: Grid, layer: Layer, speed: float, blocks: tup
     in_batches(Mx, correction)
     out = {k: {} for k in ("kernel", "power")}
     for k, b in list(near):
-        K = over_m(near.pop((k, b)), rx, Kx, False)
+        K = over_m_mirrored(near.pop((k, b))[:, Ky - 1 :], rx, Kx, False, _PARITY[b])
         out[k][b] = K + half[k, b] if (k, b) in half else K
     return out["kernel"], out["power"]
 
 
 def _series_holds(grid: Grid, layer: Layer, speed: float) -> bool:
-    """Whether every mode beyond ``k H = DEEP_KH`` (50) takes the normal compliance's series
-    (:func:`bem.layer.normal_compliance_outer`): ``eps = rho V^2 nu_x^2 / (G k^2) <=
-    rho V^2 / |G(omega_m)|`` below its bound on every row ``m``, with a margin of 1e-3."""
+    """Whether every mode beyond ``k H = DEEP_KH`` (50) takes the series in ``eps = rho V^2
+    nu_x^2 / (G k^2)`` (:data:`bem.halfspace_sums.INERTIA_SERIES`): ``eps <= rho V^2 /
+    |G(omega_m)|`` below :data:`bem.layer.SERIES_EPS` on every row ``m``, with a margin of
+    1e-3."""
     md = _modes(grid, layer, speed)
     return bool(layer.inertia(speed) * np.max(1.0 / np.abs(md.G)) <= (1 - 1e-3) * SERIES_EPS)
 
 
-def _kernels_normal_series(grid: Grid, layer: Layer, speed: float, blocks: tuple, power: bool = False):
-    """The normal kernel with inertia when every deep mode takes the series of
-    :func:`bem.layer.normal_compliance_outer` (:func:`_series_holds`): its symbol there is
-    ``1 / (2 G k) + 3 rho V^2 nu_x^2 / (8 G^2 k^3)``, sums over ``n`` of the real ``1 / k``
-    and ``1 / k^3`` (:mod:`bem.halfspace_sums`) times factors of the row, plus the exact
-    less the series' symbols on the modes ``k H <= 50`` (a box of rows and columns,
-    batch by batch with the rest). The same truncated sum as :func:`_kernels_streamed`, to
-    rounding."""
+def _kernels_series(grid: Grid, layer: Layer, speed: float, blocks: tuple, power: bool = False):
+    """The kernels with a little inertia (:func:`_series_holds`): a deep mode's symbol is a
+    sum of real arrays ``nu_x^a nu_y^b / k^p`` times factors of the row
+    (:data:`bem.halfspace_sums.INERTIA_SERIES`), summed over ``n`` once an array for all the
+    blocks (kernels' and power tables' weights in one product) before the factors of the row;
+    the modes ``k H <= 50`` (a box of rows and columns) add their exact less series symbols.
+    The same truncated sum as :func:`_kernels_streamed`, to rounding and the series' next
+    terms (``3/8 eps^2`` of a block of order one, ``1.5 eps^3`` of a normal-tangential one).
+    With ``power`` the :func:`kernels_with_power` tables as well (``{}`` without)."""
     g, H = grid, layer.thickness
     Kx, Ky = g.nodes_x, g.nodes_y
     chirp = max(Kx, Ky) > _MATMUL_NODES
     md = _modes(grid, layer, speed)
     rho_V2 = layer.inertia(speed)
-    f1 = 0.5 / md.G  # of 1 / k
-    f3 = 0.375 * rho_V2 / md.G**2  # of nu_x^2 / k^3, which is of the scale of 1 / k
     kinds = ("kernel", "power") if power else ("kernel",)
+    weights = [md.wy * md.sy if k == "power" else md.wy for k in kinds]
+    source = {b: _MIRRORED.get(b, (b, 1.0)) for b in blocks}  # a deep part shared: uw = -wu ...
+    terms = {src: INERTIA_SERIES[src] for src, _ in source.values()}
+    keys = sorted({t[:3] for ts in terms.values() for t in ts}, key=lambda t: (t[2], t))  # even, then odd
+    column = {key: i for i, key in enumerate(keys)}
+    factor = {(b, i): series_factor(t[3], md.G, rho_V2) for b, ts in terms.items() for i, t in enumerate(ts)}
     chunk = real_chunk(md.n.size)
-    far = {k: np.empty((md.m.size, 2 * Ky - 1), dtype=complex) for k in kinds}
-
-    def rows(k: str, s: slice) -> np.ndarray:
-        return md.wx[s, None] * (_power_rows(g, md, s) if k == "power" else 1.0)
-
+    far = {(k, b): np.empty((md.m.size, Ky), dtype=complex) for k in kinds for b in blocks}  # dy >= 0
     # the modes k H <= DEEP_KH (a row and a column more) add their exact less series symbols
     Mx = min(md.m.size, int(DEEP_KH * g.period_x / (2 * np.pi * H)) + 2)
     My = min(md.n.size, int(DEEP_KH * g.period_y / (2 * np.pi * H)) + 2)
 
+    def rows(k: str, s: slice) -> np.ndarray:
+        return md.wx[s, None] * (_power_rows(g, md, s) if k == "power" else 1.0)
+
     def work(start: int) -> None:
         s = slice(start, min(start + chunk, md.m.size))
-        inv_k, inv_k3 = inverse_powers(md.nu_x[s], md.nu_y)
-        inv_k3 *= md.nu_x[s, None] ** 2
-        for k in kinds:
-            c1, c3 = even_sums(inv_k, inv_k3, md.wy * md.sy if k == "power" else md.wy, md.ry, Ky, chirp)
-            far[k][s] = (f1[s, None] * c1 + f3[s, None] * c3) * rows(k, s)
-        if start < Mx:
-            s = slice(start, min(start + chunk, Mx))
-            corr = normal_compliance_outer(md.nu_x[s], md.nu_y[:My], md.G[s], rho_V2, H)
-            corr -= f1[s, None] * inv_k[: s.stop - start, :My] + f3[s, None] * inv_k3[: s.stop - start, :My]
-            for k in kinds:
-                wn = md.wy[:My] * (md.sy[:My] if k == "power" else 1.0)
-                far[k][s] += over_n(corr, False, md.ry, Ky, False, wn) * rows(k, s)
+        arrays = series_arrays(md.nu_x[s], md.nu_y, keys)
+        sums = series_sums(arrays, keys, weights, md.nu_y, md.ry, Ky, chirp)
+        deep = {(src, ik): sum(factor[src, i][s, None] * (1j if odd else 1.0) * sums[a, p, odd, ik]
+                               for i, (a, p, odd, _) in enumerate(ts))
+                for src, ts in terms.items() for ik in range(len(kinds))}  # the series' sums over n
+        near = start < Mx
+        if near:  # the box's exact and series symbols
+            t = slice(start, min(start + chunk, Mx))
+            exact = compliance_blocks(md.nu_x[t, None], md.nu_y[None, :My], md.G[t, None], rho_V2, H, blocks)
+            series = {src: sum(factor[src, i][t, None] * (arrays[column[a, p, odd]][: t.stop - start, :My]
+                                                           * (md.nu_y[:My] if odd else 1.0))
+                               for i, (a, p, odd, _) in enumerate(ts))
+                      for src, ts in terms.items()}
+        for b, (src, sign) in source.items():
+            for ik, k in enumerate(kinds):
+                far[k, b][s] = sign * deep[src, ik]
+                if near:
+                    corr = exact[b] - sign * series[src]
+                    far[k, b][t] += over_n(corr, b in _ODD_IN_NY, md.ry, Ky, False, weights[ik][:My])[:, Ky - 1 :]
+                far[k, b][s] *= rows(k, s)
 
     in_batches(md.m.size, work, chunk)
-    out = {k: over_m(far.pop(k), md.rx, Kx, chirp) for k in kinds}
-    return {"ww": out["kernel"]}, ({"ww": out["power"]} if power else {})
+    out = {k: {} for k in ("kernel", "power")}
+    for k, b in list(far):
+        out[k][b] = over_m_mirrored(far.pop((k, b)), md.rx, Kx, chirp, _PARITY[b])
+    return out["kernel"], out["power"]
 
 
 def influence_kernels(grid: Grid, layer: Layer, speed: float, blocks=("ww",)) -> dict:
@@ -367,11 +387,15 @@ def _tables(grid: Grid, layer: Layer, speed: float, blocks, power: bool) -> tupl
     blocks = _check_blocks(blocks)
     if layer.inertia(speed) == 0:
         split = _kernels_halfspace_split
-    elif blocks == ("ww",) and _series_holds(grid, layer, speed):
-        split = _kernels_normal_series
+    elif _series_holds(grid, layer, speed):
+        split = _kernels_series
     else:
         split = _kernels_streamed
-    out, pw = split(grid, layer, speed, blocks, power)
+    own = tuple(dict.fromkeys("uv" if b == "vu" else b for b in blocks))  # vu = uv, the same sums
+    out, pw = split(grid, layer, speed, own, power)
+    for tables in (out, pw):
+        if "vu" in blocks and tables:
+            tables["vu"] = tables["uv"].copy() if "uv" in blocks else tables.pop("uv")
     bad = [b for b, k in (*out.items(), *pw.items()) if not np.isfinite(k).all()]
     if bad:
         g = grid

@@ -91,6 +91,22 @@ def test_every_entry_on_its_own_scale_against_a_30_digit_exponential(G, rho_V2, 
         assert np.all(err <= tol), (kh, err)
 
 
+@pytest.mark.parametrize("G", [3e6, 3e6 + 1.5e6j])
+def test_deep_couplings_with_a_little_inertia_on_their_own_scale(G):
+    """Beyond k H = 50 with eps = rho V^2 nu_x^2 / (G k^2) of 6e-7 and 6e-10 the normal-
+    tangential entries are of order eps: i (k - q) / (G R) with k - q = eps k / 2 to first
+    order, so k - q is taken as (k^2 - q^2) / (k + q) (the difference of k and q keeps
+    1e-16 k: 1e-10 to 3e-7 of the entry, measured). Against a 40-digit matrix exponential,
+    each entry on its own scale: 1e-13 (measured 1.3-6.2e-16)."""
+    for kh, rho_V2 in ((60.0, 3.0), (300.0, 3.0), (300.0, 3e-3)):
+        k = kh / H
+        nx, ny = k * np.cos(0.7), k * np.sin(0.7)
+        R = _compliance_mp(nx, ny, G, rho_V2, H, digits=40)
+        C = surface_compliance(nx, ny, G, rho_V2, H)
+        for i, j in ((0, 1), (0, 2), (1, 0), (2, 0)):
+            assert abs(C[i, j] - R[i, j]) <= 1e-13 * abs(R[i, j]), (kh, rho_V2, i, j)
+
+
 def test_static_normal_compliance_independent_formula():
     """V = 0: w/sigma_z = (sinh 2kH - 2kH) / (2 G k (cosh 2kH + 2 (kH)^2 + 1)), the bonded
     incompressible layer of Jaffar's L(omega) (paper eq. 68, kappa = 1), to 1e-13."""
