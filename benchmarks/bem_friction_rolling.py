@@ -6,8 +6,9 @@ The elastic paraboloid: a rigid paraboloid ``R = 20 mm`` on a thick elastic laye
 ``Omega`` prescribed so that the creepage ``(V - Omega R) / V = 0.01`` on every row
 (``l(y) = R`` through ``Friction.radius``, CONTACT's uniform longitudinal creepage), period
 ``L = 0.6 m`` (3 H, where the period stops mattering; ``--period``), ``Nt = L / 2a``,
-half-width 6 mm; spacing 0.2 mm (61 x 61 nodes) and 0.1 mm (121 x 121). CONTACT (single
-thread, the same 2-core machine): 0.31-0.40 s at 0.2 mm, 7.8 s at 0.1 mm.
+half-width 6 mm; spacing 0.2 mm (61 x 61 nodes) and 0.1 mm (121 x 121); the case file
+``examples/elastic-paraboloid-creepage.toml``. CONTACT's whole runs of it on the same
+machine: BENCHMARKS.md, "External references".
 
 The viscoelastic sphere: the section 11 friction example
 (``examples/paper-section11-friction.toml``, 41 x 41) and the same problem on ``--nodes``
