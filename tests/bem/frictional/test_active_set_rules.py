@@ -24,6 +24,19 @@ R = 0.02
 GRID = Grid.centred((0.5e-3, 0.5e-3), (0.1, 0.1), (100, 100), (5.5e-3, 5.5e-3))  # 23 x 23, 529 nodes
 
 
+@pytest.fixture(autouse=True)
+def one_blas_thread():
+    """The steps are run and replayed here by calling the active set directly, outside
+    :func:`bem.frictional.solve_friction`, which runs its BLAS on one thread
+    (:mod:`bem.threads`): so do these tests. The replay redoes each step's arithmetic in
+    its own order and compares the sets; on the cycling case (towed, mu = 1e-3), a near tie,
+    OpenBLAS's two threads round the run and the replay apart and one node differs."""
+    from bem.threads import one_blas_thread as limit
+
+    with limit():
+        yield
+
+
 @pytest.fixture(scope="module")
 def kernels():
     return influence_kernels(GRID, LAYER, V, blocks=BLOCKS)
