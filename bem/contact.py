@@ -48,18 +48,16 @@ of up to 100 nodes), the price of 28 GMRES iterations (0.95 ms each, product and
 preconditioner), to save about three. With every step solved to ``rtol``, the
 viscoelastic solve spends its extra iterations on digits of intermediate sets that the
 next step discards; :data:`LOOSE_RTOL` does not ask for them. GMRES iterations, fine grid
-/ all levels, viscoelastic against elastic (one BLAS thread): 25 / 65 against 21 / 47 at
-155 x 155 (1.19 / 1.38), 23 / 44 against 18 / 36 at 77 x 77 (1.28 / 1.22). With every
+/ all levels, viscoelastic against elastic (one BLAS thread): 25 / 65 against 21 / 55 at
+155 x 155 (1.19 / 1.18; 8 of the elastic 55 on a 20 x 20 level that the solve drops, its
+contact reaching that grid's edge), 23 / 44 against 18 / 36 at 77 x 77 (1.28 / 1.22). With every
 step to ``rtol``, no guess from the coarse forces and no coarse level of even-sized grids
 they are 67 / 151 against 48 / 91 and 53 / 105 against 39 / 73, and a solve takes
 1.4-1.8 times as long (CPU, median of 7 pairs). Each measure on the fine grid at 155 x 155
 (elastic / viscoelastic, iterations without it and with it): the loose steps 46 / 64 and
 21 / 25; the coarse forces as the first guess 22 / 28 and 21 / 25; on the even-sized
 78 x 78 level, a coarse level of its own (instead of every reachable node as the first
-set), its set widened along odd-sized axes only, 22 / 37 and 12 / 17. The all-level ratio
-at 155 x 155 counts a 20 x 20 level (6 iterations) that only the viscoelastic solve has:
-the elastic contact reaches that grid's edge, and a failed level's iterations are in no
-record.
+set), its set widened along odd-sized axes only, 22 / 37 and 12 / 17.
 
 A penetrating node joins the next set only if it penetrates under the compressive forces
 alone (:func:`_lifted`, one product on the grid when a step both drops and adds): a tensile
