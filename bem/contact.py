@@ -222,6 +222,40 @@ def _lifted(operator: ComplianceOperator, F: np.ndarray, drop: np.ndarray, base:
     return base + operator.apply(np.where(drop, 0.0, F).reshape(operator.grid.shape)).ravel() >= -tol
 
 
+def _next_set(active, drop, add, F, h, careful: bool) -> np.ndarray:
+    """The next trial set (flat masks): the tensile nodes ``drop`` out and the penetrating
+    ``add`` in, or with ``careful`` (after a cycle) one node, the most tensile (forces
+    ``F``, N) or else the deepest (gaps ``h``, m)."""
+    if not careful:
+        return (active & ~drop) | add
+    new = active.copy()
+    if drop.any():
+        new[np.argmin(np.where(drop, F, np.inf))] = False
+    else:
+        new[np.argmin(np.where(add, h, np.inf))] = True
+    return new
+
+
+def _solve_step(solve: LinearSolver, system: NormalSystem, guess: np.ndarray, rtol: float,
+                loose: float | None) -> tuple[np.ndarray, bool, bool]:
+    """One active-set step's linear solve (:data:`LOOSE_RTOL`): to ``loose`` (of ``|b|``)
+    in one restart cycle when ``loose`` is given, above ``rtol``, and the system goes to
+    GMRES; otherwise to ``rtol``. A loose solve that fails (more than one cycle: the
+    preconditioner misses the set) is redone to ``rtol`` (dense LU up to
+    :data:`DENSE_FALLBACK` nodes). Returns the solution, whether it is exact (to ``rtol``
+    or by dense LU) and whether a loose solve failed."""
+    what, hint = f"{system.m} contact nodes", "refine less, or raise dense_limit if memory allows"
+    exact = loose is None or loose <= rtol or solve.dense_for(system.n)
+    try:
+        x = solve(system, guess[:system.n], rtol=rtol if exact else loose, maxiter=None if exact else 1,
+                  what=what, hint=hint)
+    except ContactNotConverged:
+        if exact:
+            raise
+        return solve(system, guess[:system.n], what=what, hint=hint), True, True
+    return x, exact or solve.dense_for(system.n), False
+
+
 def solve_normal(
     operator: ComplianceOperator,
     profile: np.ndarray,
@@ -309,20 +343,9 @@ def solve_normal(
     for it in range(1, max_iter + 1):
         idx = np.flatnonzero(active)
         system = NormalSystem(operator, idx, s[idx], load, indentation)
-        step_rtol = min(LOOSE_RTOL, changed ** 2)
-        exact = tight or step_rtol <= rtol or solve.dense_for(system.n)
-        step_rtol = rtol if exact else step_rtol
-        try:  # a loose step gets one restart cycle: more means the preconditioner misses the set
-            x = solve(system, guess[:system.n], rtol=step_rtol, maxiter=None if exact else 1,
-                      what=f"{idx.size} contact nodes", hint="refine less, or raise dense_limit if memory allows")
-        except ContactNotConverged:
-            if exact:
-                raise
-            tight = exact = True  # a set beyond DENSE_FALLBACK: GMRES to rtol, every cycle
-            x = solve(system, guess[:system.n], what=f"{idx.size} contact nodes",
-                      hint="refine less, or raise dense_limit if memory allows")
+        x, exact, failed = _solve_step(solve, system, guess, rtol, None if tight else min(LOOSE_RTOL, changed ** 2))
+        tight = tight or failed  # a loose solve that failed: every solve to rtol from here on
         fA, d = system.split(x)
-        exact = exact or solve.dense_for(system.n)  # a GMRES failure solved by dense LU
         F = np.zeros_like(s)
         F[idx] = fA
         u = operator.apply(F.reshape(grid.shape)).ravel()
@@ -343,14 +366,7 @@ def solve_normal(
             tight = True  # a set that a loose solve leaves unchanged is confirmed by a tight one
             guess = np.concatenate([fA, [d]])
             continue
-        if careful:  # one node at a time, the worst first
-            new = active.copy()
-            if drop.any():
-                new[np.argmin(np.where(drop, F, np.inf))] = False
-            else:
-                new[np.argmin(np.where(add, h, np.inf))] = True
-        else:
-            new = (active & ~drop) | add
+        new = _next_set(active, drop, add, F, h, careful)
         changed = (int(drop.sum()) + int(add.sum())) / idx.size
         if not new.any() and load is None:
             # every force came out tensile (only possible with d prescribed): restart from the
