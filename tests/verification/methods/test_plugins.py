@@ -9,32 +9,14 @@ from pathlib import Path
 import numpy as np
 
 import verification.methods as methods
+from tests.verification.small_cases import THICK_LAYER_CASE
 from verification.cli import main as verify_main
 
 ROOT = Path(__file__).resolve().parents[3]
 HERTZ = f"hertz={ROOT / 'examples' / 'hertz_method.py'}:solve"
 
-HALFSPACE = """
-name = "hs"
-title = "A thick layer: Hertz holds"
-kind = "stationary"
-[problem]
-layer = { thickness = 0.03 }
-material = { model = "elastic", shear_modulus = 3.0e6 }
-indenter = { shape = "paraboloid", radius = 0.02 }
-loading = { load = 10.0 }
-[bem]
-spacings = [0.2e-3]
-half_width = 2.9e-3
-[analytic]
-reference = "hertz"
-[[gates]]
-quantity = "contact_radius"
-methods = ["bem"]
-against = "analytic"
-tolerance = 0.01
-reason = "test"
-[[gates]]
+# the shared thick-layer case with a second gate: the pressure inside the contact
+HALFSPACE = THICK_LAYER_CASE + """[[gates]]
 quantity = "pressure_rms_interior"
 methods = ["bem"]
 against = "analytic"
