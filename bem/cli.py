@@ -24,6 +24,8 @@ from pathlib import Path
 
 import casefile
 
+from .threads import one_blas_thread_from_start
+
 # numpy and the solver are imported in main(), after the arguments are parsed: --help
 # answers without loading them.
 
@@ -296,5 +298,21 @@ def _print_result(args, problem, friction, result, summary, LineContact) -> None
             print(f"stick fraction      {result.stick_fraction:.4g}")
 
 
+def command() -> None:
+    """The ``bem`` command (its console script, and ``python -m bem.cli``): :func:`main`
+    with one BLAS thread from the start (:func:`bem.threads.one_blas_thread_from_start`),
+    then, its output flushed, the process ends at once (``os._exit``) instead of tearing
+    down the interpreter, which freed every module and array one by one: 0.02 s of a
+    0.3 s ``bem solve`` (the elastic paraboloid with friction at 0.2 mm). Every file it
+    writes is closed by then (:func:`_commit`). Usage errors and ``--help`` exit through
+    ``SystemExit`` as usual; in-process callers (the tests) call :func:`main`."""
+    one_blas_thread_from_start()
+    status = main()
+    for stream in (sys.stdout, sys.stderr):
+        with contextlib.suppress(OSError, ValueError):  # a reader gone, a stream closed
+            stream.flush()
+    os._exit(status)
+
+
 if __name__ == "__main__":
-    sys.exit(main())
+    command()

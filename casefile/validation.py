@@ -27,7 +27,6 @@ here is shorter than that glue.
 
 from __future__ import annotations
 
-import difflib
 import math
 from dataclasses import dataclass
 from pathlib import Path
@@ -129,6 +128,8 @@ def show(value) -> str:
 
 def did_you_mean(word, known: Iterable) -> str:
     """``"; did you mean 'x'?"`` for a near miss of ``word`` among ``known``, else ``""``."""
+    import difflib  # on a bad key only: 1 ms of every command's start otherwise
+
     hits = difflib.get_close_matches(str(word), [str(k) for k in known], n=1, cutoff=0.6)
     return f"; did you mean {hits[0]!r}?" if hits else ""
 

@@ -72,3 +72,30 @@ def test_the_cores_a_process_may_use(monkeypatch):
     monkeypatch.delenv("OMP_NUM_THREADS")
     monkeypatch.setattr("os.sched_getaffinity", lambda pid: {3})
     assert cores() == 1 and fft_workers((1000, 1000)) == 1
+
+
+def _blas_threads_in_a_command_process(**env) -> set[int]:
+    """The BLAS thread counts of a fresh process that starts as the ``bem`` command does
+    (:func:`bem.threads.one_blas_thread_from_start`, then numpy), under ``env`` on top of
+    this one's without the thread variables."""
+    import json
+    import os
+    import subprocess
+    import sys
+
+    code = ("from bem.threads import one_blas_thread_from_start\n"
+            "one_blas_thread_from_start()\n"
+            "import json, numpy\n"
+            "from threadpoolctl import threadpool_info\n"
+            "print(json.dumps(sorted({l['num_threads'] for l in threadpool_info() if l['user_api'] == 'blas'})))\n")
+    clean = {k: v for k, v in os.environ.items() if k not in THREAD_VARIABLES}
+    done = subprocess.run([sys.executable, "-c", code], env={**clean, **env}, capture_output=True, text=True,
+                          timeout=60, check=True)
+    return set(json.loads(done.stdout))
+
+
+def test_the_command_loads_its_blas_with_one_thread_unless_the_user_chose(two_blas_threads):
+    """The ``bem`` command sets the count before numpy loads: OpenBLAS then starts no
+    threads of its own (they spun while numpy loaded); a count the user set is kept."""
+    assert _blas_threads_in_a_command_process() == {1}
+    assert _blas_threads_in_a_command_process(OPENBLAS_NUM_THREADS="2") == {2}
