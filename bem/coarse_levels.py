@@ -1,5 +1,5 @@
 """The coarse level of the contact solvers' multilevel starts: its grid, the fields and
-kernel read on it, and the way back (masks upsampled and widened, values interpolated).
+kernel read on it, and the way back (masks upsampled, values interpolated).
 
 Along an odd-sized axis of ``K`` nodes the coarse level keeps every other node (``(K +
 1) / 2``, the same positions); along an even-sized one it puts a node in the middle of
@@ -16,7 +16,7 @@ import numpy as np
 
 from .grid import Grid
 
-__all__ = ["coarse_grid", "coarse_level", "restricted", "coarse_kernel", "upsampled", "prolonged", "dilated"]
+__all__ = ["coarse_grid", "coarse_level", "restricted", "coarse_kernel", "upsampled", "prolonged"]
 
 
 def coarse_grid(grid: Grid) -> Grid | None:
@@ -89,18 +89,4 @@ def prolonged(coarse: np.ndarray, shape: tuple[int, int]) -> np.ndarray:
         hi = np.minimum(lo + 1, m - 1)
         w = (pos - lo).reshape((-1,) + (1,) * (out.ndim - axis - 1))
         out = out.take(lo, axis=axis) * (1 - w) + out.take(hi, axis=axis) * w
-    return out
-
-
-def dilated(mask: np.ndarray, axes: tuple[int, ...] = (0, 1)) -> np.ndarray:
-    """A 2-D boolean mask widened by one node along each of ``axes`` (both: in every
-    direction, diagonals included, the dilation by a 3 x 3 block of ones)."""
-    out = np.array(mask, dtype=bool)
-    for axis in axes:
-        grown = out.copy()
-        lo, hi = [slice(None)] * 2, [slice(None)] * 2
-        lo[axis], hi[axis] = slice(None, -1), slice(1, None)
-        grown[tuple(hi)] |= out[tuple(lo)]
-        grown[tuple(lo)] |= out[tuple(hi)]
-        out = grown
     return out

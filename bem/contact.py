@@ -48,16 +48,19 @@ of up to 100 nodes), the price of 28 GMRES iterations (0.95 ms each, product and
 preconditioner), to save about three. With every step solved to ``rtol``, the
 viscoelastic solve spends its extra iterations on digits of intermediate sets that the
 next step discards; :data:`LOOSE_RTOL` does not ask for them. GMRES iterations, fine grid
-/ all levels, viscoelastic against elastic (one BLAS thread): 25 / 65 against 21 / 55 at
-155 x 155 (1.19 / 1.18; 8 of the elastic 55 on a 20 x 20 level that the solve drops, its
-contact reaching that grid's edge), 23 / 44 against 18 / 36 at 77 x 77 (1.28 / 1.22). With every
-step to ``rtol``, no guess from the coarse forces and no coarse level of even-sized grids
-they are 67 / 151 against 48 / 91 and 53 / 105 against 39 / 73, and a solve takes
-1.4-1.8 times as long (CPU, median of 7 pairs). Each measure on the fine grid at 155 x 155
-(elastic / viscoelastic, iterations without it and with it): the loose steps 46 / 64 and
-21 / 25; the coarse forces as the first guess 22 / 28 and 21 / 25; on the even-sized
+/ all levels, viscoelastic against elastic (one BLAS thread, ``benchmarks/
+bem_viscoelastic_rolling.py``): 22 / 60 against 20 / 54 at 155 x 155 (1.10 / 1.11; the
+elastic ones include a 20 x 20 level that the solve drops, its contact reaching that
+grid's edge), 18 / 37 against 14 / 29 at 77 x 77 (1.29 / 1.28). With every step to
+``rtol``, no guess from the coarse forces, no coarse level of even-sized grids and the
+coarse contact widened by a node as the first set they were 67 / 151 against 48 / 91 and
+53 / 105 against 39 / 73, and a solve took 1.4-1.8 times as long (CPU, median of 7
+pairs). Each measure on the fine grid at 155 x 155 (elastic / viscoelastic, iterations
+without it and with it, measured with the widened first set): the loose steps 46 / 64
+and 21 / 25; the coarse forces as the first guess 22 / 28 and 21 / 25; on the even-sized
 78 x 78 level, a coarse level of its own (instead of every reachable node as the first
-set), its set widened along odd-sized axes only, 22 / 37 and 12 / 17.
+set) 22 / 37 and 12 / 17. The first set from the coarse deflection
+(:func:`_coarse_start`) then took 25 / 65 -> 22 / 60 and 21 / 55 -> 20 / 54.
 
 A penetrating node joins the next set only if it penetrates under the compressive forces
 alone (:func:`_lifted`, one product on the grid when a step both drops and adds): a tensile
@@ -85,7 +88,7 @@ from typing import Callable
 
 import numpy as np
 
-from .coarse_levels import coarse_grid, coarse_kernel, coarse_level, dilated, prolonged, restricted, upsampled
+from .coarse_levels import coarse_grid, coarse_kernel, coarse_level, prolonged, restricted, upsampled
 from .linear import LinearSolver
 from .normal_system import NormalSystem
 from .operator import ComplianceOperator
@@ -95,7 +98,7 @@ from .result import SHARED_SCALARS, ContactFigures, NormalContact, SolveRecord, 
 __all__ = [
     "ContactError", "ContactNotConverged", "ContactAtEdge", "SolveRecord", "ContactFigures", "NormalContact",
     "solve_normal", "grid_summary", "pressure_centroid_x", "SHARED_SCALARS", "NormalSystem", "coarse_grid",
-    "edge_nodes", "coarse_solution", "coarse_level", "prolonged", "dilated", "DENSE_LIMIT", "DENSE_FALLBACK",
+    "edge_nodes", "coarse_solution", "coarse_level", "prolonged", "DENSE_LIMIT", "DENSE_FALLBACK",
     "LOOSE_RTOL",
 ]
 
@@ -184,10 +187,20 @@ def _coarse_start(operator, s, reachable, load, indentation, dense_limit, rtol, 
     """Trial contact set from the same problem on :func:`coarse_level`'s nodes
     (recursively, :func:`coarse_solution`; ``known``: that solution when already solved).
 
-    Its contact set, upsampled (:func:`~bem.coarse_levels.upsampled`) and widened by one
-    node along the odd-sized axes, starts the active set on the full grid, which then needs
-    a few iterations instead of tens. Returns the start set and the coarse solution, or
+    Its contact set, upsampled (:func:`~bem.coarse_levels.upsampled`), with the fine nodes
+    whose gap it predicts at most 0, starts the active set on the full grid, which then
+    needs a few iterations instead of tens. The predicted gap is the fine profile (exact)
+    less the coarse indentation plus the coarse deflection prolonged
+    (:func:`~bem.coarse_levels.prolonged`): the deflection is smooth across the contact's
+    edge, where the pressure is not. Returns the start set and the coarse solution, or
     ``(None, None)`` when the grid is small (< 625 nodes) or the coarse solve fails.
+
+    Against the upsampled set widened by one node along the odd-sized axes (every node
+    next to the coarse contact), active-set iterations of the elastic paraboloid of
+    ``examples/elastic-paraboloid-creepage.toml``, frictionless: 61 x 61 5 -> 4 (19.5 ->
+    17 ms), 121 x 121 6 -> 4 (55 -> 43 ms); the thick layer of section 10 5 -> 4 (11.0 ->
+    9.6 ms); the predicted gap alone, without the upsampled set, missed contact nodes
+    between the coarse ones (61 x 61: 1702 of 1977) and took 5.
     """
     grid = operator.grid
     coarse = coarse_level(grid)
@@ -198,11 +211,8 @@ def _coarse_start(operator, s, reachable, load, indentation, dense_limit, rtol, 
         rtol=rtol)
     if res is None:
         return None, None
-    # widened by one node along the odd-sized axes; along an even-sized one each coarse node
-    # already covers both nodes of its pair, half a fine spacing beyond it (widening there
-    # too cost 3 / 2 more GMRES iterations on the 78 x 78 level of the 155 x 155 benchmark)
-    odd = tuple(axis for axis, n in enumerate(grid.shape) if n % 2)
-    return dilated(upsampled(res.contact, grid.shape), odd).ravel() & reachable, res
+    gap = s - res.indentation + prolonged(res.deflection, grid.shape).ravel()  # inf where unreachable
+    return (upsampled(res.contact, grid.shape).ravel() | (gap <= 0)) & reachable, res
 
 
 def _lifted(operator: ComplianceOperator, F: np.ndarray, drop: np.ndarray, base: np.ndarray,

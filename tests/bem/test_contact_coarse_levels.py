@@ -1,5 +1,4 @@
-"""bem.contact's coarse level of any grid and its loose active-set steps: the 3 x 3
-dilation against its definition, the coarse nodes, kernel and interpolation against the
+"""bem.contact's coarse level of any grid and its loose active-set steps: the coarse nodes, kernel and interpolation against the
 fine grid's, and the loose steps against every step solved to ``rtol`` (the same
 converged set)."""
 
@@ -7,7 +6,7 @@ import numpy as np
 import pytest
 
 import bem.contact as contact
-from bem.coarse_levels import coarse_grid, coarse_kernel, coarse_level, dilated, prolonged
+from bem.coarse_levels import coarse_grid, coarse_kernel, coarse_level, prolonged
 from bem.contact import solve_normal
 from bem.grid import Grid
 from bem.indenters import Sphere
@@ -15,33 +14,6 @@ from bem.layer import Layer
 from bem.materials import Elastic
 from bem.operator import ComplianceOperator
 from bem.spectral import influence_kernels
-
-
-def _dilation_by_definition(mask, rows=1, columns=1):
-    """``out[j, i]`` = any node of ``mask`` within ``rows`` rows and ``columns`` columns of
-    ``(j, i)``."""
-    Ky, Kx = mask.shape
-    out = np.zeros_like(mask)
-    for j in range(Ky):
-        for i in range(Kx):
-            out[j, i] = mask[max(j - rows, 0):j + rows + 1, max(i - columns, 0):i + columns + 1].any()
-    return out
-
-
-@pytest.mark.parametrize("shape", [(9, 11), (1, 7), (6, 1), (2, 2)])
-def test_dilated_is_the_3x3_dilation(shape):
-    """Both axes: the 3 x 3 dilation (what ``scipy.ndimage.binary_dilation`` with a 3 x 3
-    structure gives); one axis: the 3 x 1 or 1 x 3 one."""
-    rng = np.random.default_rng(sum(shape))
-    for density in (0.05, 0.3):
-        mask = rng.random(shape) < density
-        mask[0, -1] = True  # a corner node
-        kept = mask.copy()
-        np.testing.assert_array_equal(dilated(mask), _dilation_by_definition(mask))
-        np.testing.assert_array_equal(mask, kept)  # the input is not changed
-        np.testing.assert_array_equal(dilated(mask, (0,)), _dilation_by_definition(mask, columns=0))
-        np.testing.assert_array_equal(dilated(mask, (1,)), _dilation_by_definition(mask, rows=0))
-        np.testing.assert_array_equal(dilated(mask, ()), mask)
 
 
 @pytest.mark.parametrize("shape", [(26, 25), (25, 26), (26, 26), (25, 25)])
