@@ -8,7 +8,6 @@ threads share the batches (NumPy's transforms and matrix products release the GI
 from __future__ import annotations
 
 import functools
-from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 
@@ -40,7 +39,15 @@ def _keep_heap() -> None:
 
 def in_batches(rows: int, work, chunk: int = CHUNK) -> None:
     """``work(start)`` for every batch of ``chunk`` rows (``start = 0, chunk, ...`` below
-    ``rows``), on two threads (one where the process may use one core, :func:`bem.threads.cores`)."""
+    ``rows``), on two threads, or on the caller's alone where the process may use one core
+    (:func:`bem.threads.cores`) or there is one batch."""
     _keep_heap()
-    with ThreadPoolExecutor(max_workers=min(2, cores())) as pool:
-        list(pool.map(work, range(0, rows, chunk)))
+    starts = range(0, rows, chunk)
+    if cores() == 1 or len(starts) == 1:
+        for start in starts:
+            work(start)
+        return
+    from concurrent.futures import ThreadPoolExecutor  # 4 ms of a start-up, with logging
+
+    with ThreadPoolExecutor(max_workers=2) as pool:
+        list(pool.map(work, starts))

@@ -5,7 +5,6 @@
 from __future__ import annotations
 
 import pathlib
-import zipfile
 from pathlib import Path
 
 import numpy as np
@@ -46,6 +45,8 @@ def _pair(section: dict, name: str, default=None) -> tuple:
 
 
 def _height_map(file: str) -> HeightMap:
+    import zipfile  # 5 ms of every start-up, with shutil, bz2 and lzma
+
     try:
         data = np.load(file)
         if not isinstance(data, np.lib.npyio.NpzFile):  # a .npy file holds one array

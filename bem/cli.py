@@ -14,7 +14,6 @@ from __future__ import annotations
 import argparse
 import contextlib
 import io
-import json
 import math
 import os
 import signal
@@ -66,6 +65,8 @@ def _write_outputs(args, friction, result, summary) -> list[str]:
             "force_x": result.force_x, "force_y": result.force_y, "stick": result.stick,
             "slip_x": result.slip_x, "slip_y": result.slip_y,
             "displacement_x": result.displacement_x, "displacement_y": result.displacement_y}
+        import json
+
         try:
             np.savez_compressed(
                 _partial(fields), x=result.grid.x, y=result.grid.y, force=result.force,
@@ -261,6 +262,8 @@ def _grid_error(problem, friction, result, progress):
 def _print_result(args, problem, friction, result, summary, LineContact) -> None:
     """The result as JSON or text on standard output."""
     if args.json:
+        import json
+
         print(json.dumps(summary, indent=2, allow_nan=False))
     elif isinstance(result, LineContact):
         print("plane strain (line contact), per unit length along the cylinder's axis")

@@ -5,7 +5,6 @@ from __future__ import annotations
 import math
 import threading
 import time
-from concurrent.futures import ThreadPoolExecutor
 from dataclasses import replace
 from typing import Callable
 
@@ -204,6 +203,8 @@ def _first_solves(setup: RollingSetup, friction: Friction, normal: NormalContact
             def fields():
                 if once.acquire(blocking=False):
                     ops.fields(*(np.zeros(g.shape),) * 3)
+
+            from concurrent.futures import ThreadPoolExecutor  # only where two threads run
 
             with one_worker(), ThreadPoolExecutor(1, thread_name_prefix="frictionless-start") as pool:
                 job = pool.submit(_frictionless_prepared, setup, solves, ww, profile, below, kw, fields)

@@ -17,7 +17,6 @@ Woodbury's identity: :mod:`bem.frictional.preconditioner`.
 from __future__ import annotations
 
 import os
-from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 from .. import fft as sfft
@@ -311,11 +310,14 @@ class GroupedRuns:
         return res.reshape(v.shape)
 
 
-def second_thread() -> ThreadPoolExecutor:
-    """One worker thread, started on first use and kept (a forked child starts its own:
-    the parent's thread does not exist there, and work handed to it would never run)."""
+def second_thread():
+    """One worker thread (a ``concurrent.futures.ThreadPoolExecutor``), started on first
+    use and kept (a forked child starts its own: the parent's thread does not exist there,
+    and work handed to it would never run)."""
     global _POOL
     if _POOL is None:
+        from concurrent.futures import ThreadPoolExecutor  # loaded by the first run on two threads
+
         _POOL = ThreadPoolExecutor(1, thread_name_prefix="line-preconditioner")
     return _POOL
 
@@ -325,5 +327,5 @@ def _forget_pool() -> None:
     _POOL = None
 
 
-_POOL: ThreadPoolExecutor | None = None
+_POOL = None
 os.register_at_fork(after_in_child=_forget_pool)
