@@ -23,7 +23,8 @@ from .active_set import ActiveSetResult, LinearSolves, run_active_set
 from .loading import check_reachable, constraint
 from .operators import RollingOperators
 from .options import SolverOptions
-from .starts import coarse_forces, coarse_start, continuation, frictionless_start, saturation_creepage
+from .starts import (coarse_forces, coarse_start, continuation, frictionless_start, nodes_within, restricted_start,
+                     saturation_creepage)
 from .system import RollingSetup, SetState, SetSystem
 
 __all__ = ["solve_friction", "solve_rolling"]
@@ -32,7 +33,7 @@ __all__ = ["solve_friction", "solve_rolling"]
 @with_one_blas_thread
 def solve_friction(problem: Problem, friction: Friction, progress: Callable[[str], None] | None = None,
                    options: SolverOptions | None = None, kernels: dict | None = None,
-                   energy: bool = True) -> tuple[FrictionalContact, dict]:
+                   energy: bool = True, finer: FrictionalContact | None = None) -> tuple[FrictionalContact, dict]:
     """Steady rolling/sliding of ``problem`` with Coulomb ``friction``: the frictional
     entry point (the frictionless one is :func:`bem.problem.solve_frictionless`).
 
@@ -45,7 +46,9 @@ def solve_friction(problem: Problem, friction: Friction, progress: Callable[[str
     (:func:`bem.energy.layer_power`: by FFTs from the power tables computed with the
     kernels, milliseconds; by the mode sum of :func:`bem.energy.viscous_dissipation` when
     given ``kernels`` lack them, about 2 s at ``N_t = 2000``); otherwise it
-    is ``nan``. A plane-strain problem (a :class:`bem.plane.LineGrid`) takes the line
+    is ``nan``. ``finer``: a solution of the same case on a grid that holds this grid's
+    nodes (the grid error's levels, :func:`bem.frictional.grid_error.estimate_grid_error`),
+    which then starts the iteration (:func:`solve_rolling`). A plane-strain problem (a :class:`bem.plane.LineGrid`) takes the line
     kernels (:func:`bem.plane.line_kernels`) and :func:`bem.plane.line_dissipation`: every
     force per unit length (N/m, the energy figure too).
 
@@ -68,7 +71,7 @@ def solve_friction(problem: Problem, friction: Friction, progress: Callable[[str
     profile, arm, ell = rolling_geometry(p.indenter, X, Y, friction.kinematics, friction.radius)
     res = solve_rolling(ops, profile, arm, ell, R, p.loading.speed, friction,
                         load=p.loading.load, indentation=p.loading.indentation, progress=progress,
-                        options=options)
+                        options=options, finer=finer)
     t2 = time.perf_counter()
     timings = {"kernel_s": kernel_s, "solve_s": t2 - t1}
     if energy:
@@ -87,7 +90,8 @@ def solve_friction(problem: Problem, friction: Friction, progress: Callable[[str
 def solve_rolling(ops: RollingOperators, profile, arm, ell, radius: float, speed: float,
                   friction: Friction, *, load=None, indentation=None,
                   progress: Callable[[str], None] | None = None, settle: float | None = None,
-                  normal: NormalContact | None = None, options: SolverOptions | None = None) -> FrictionalContact:
+                  normal: NormalContact | None = None, options: SolverOptions | None = None,
+                  finer: FrictionalContact | None = None) -> FrictionalContact:
     """Frictional steady rolling/sliding on prepared operators.
 
     Parameters
@@ -115,6 +119,11 @@ def solve_rolling(ops: RollingOperators, profile, arm, ell, radius: float, speed
         coarse level's: the fine frictionless solve's ``coarse``); solved otherwise.
     options : SolverOptions, optional
         The solver's tuning (default ``SolverOptions()``), passed to the coarse levels.
+    finer : FrictionalContact, optional
+        The same problem solved on a grid that holds this grid's nodes
+        (:func:`~bem.frictional.starts.nodes_within`): its sets and forces there start the
+        iteration (:func:`~bem.frictional.starts.restricted_start`) instead of a coarse
+        level's solution, which is then not solved; ignored on other grids.
 
     Raises
     ------
@@ -138,7 +147,9 @@ def solve_rolling(ops: RollingOperators, profile, arm, ell, radius: float, speed
                          constraint=cons)
     solves = LinearSolves(friction.dense_limit, o)
     known = normal if normal is not None and normal.grid.shape == g.shape else None
-    normal, coarse = _first_solves(setup, friction, known, progress, solves, o)
+    if finer is not None and nodes_within(finer.grid, g) is None:
+        finer = None
+    normal, coarse = _first_solves(setup, friction, known, progress, solves, o, levels=finer is None)
     N0 = normal.force.ravel()
     check_reachable(friction.mode, friction.mu, cons, N0)
     if friction.mu == 0:
@@ -148,13 +159,17 @@ def solve_rolling(ops: RollingOperators, profile, arm, ell, radius: float, speed
                        np.zeros(size, bool), (), "dense", 0)
 
     saturation = saturation_creepage(N0 > 0, g.shape, g.spacing_x, friction.mu, radius)
-    starts = [(frictionless_start(N0, ell, speed, friction, saturation, o.slip_creep), None)]
+    starts = [("all stick", frictionless_start(N0, ell, speed, friction, saturation, o.slip_creep), None)]
     if coarse is not None:
         # the coarse solution's sets start the fine grid's, its forces (prolonged) the first solve
-        starts.insert(0, (coarse_start(coarse, g.shape, N0, friction.mu),
+        starts.insert(0, ("the coarse grid's", coarse_start(coarse, g.shape, N0, friction.mu),
                           coarse_forces(coarse, g.shape, N0, normal.indentation, normal.coarse)))
+    if finer is not None:
+        fg = finer.grid
+        starts.insert(0, (f"the {fg.nodes_x} x {fg.nodes_y} solution's",
+                          *restricted_start(finer, g, N0, normal.indentation, friction.mu)))
     try:
-        for i, (start, forces) in enumerate(starts):
+        for i, (label, start, forces) in enumerate(starts):
             try:
                 out = run_active_set(setup, friction, start, solves, progress, settle, forces, o)
                 break
@@ -162,7 +177,7 @@ def solve_rolling(ops: RollingOperators, profile, arm, ell, radius: float, speed
                 if i == len(starts) - 1:
                     raise
                 if progress:
-                    progress(f"friction: the coarse grid's start failed ({exc}); starting from all stick")
+                    progress(f"friction: {label} start failed ({exc}); starting from {starts[i + 1][0]}")
     except LoadingUnreachable:
         raise
     except FrictionNotConverged as exc:
@@ -173,7 +188,7 @@ def solve_rolling(ops: RollingOperators, profile, arm, ell, radius: float, speed
 
 
 def _first_solves(setup: RollingSetup, friction: Friction, normal: NormalContact | None, progress,
-                  solves: LinearSolves, options: SolverOptions):
+                  solves: LinearSolves, options: SolverOptions, levels: bool = True):
     """The frictionless solution of the grid (``normal`` when known; GMRES to
     ``options.start_rtol``, or dense LU up to the frictional solve's own limit, 3 unknowns a
     node: at 61 x 61, 1977 contact nodes, dense LU took 0.9 s of a 1.5 s solve, GMRES
@@ -187,13 +202,15 @@ def _first_solves(setup: RollingSetup, friction: Friction, normal: NormalContact
     threads meanwhile transform on one worker each (:func:`bem.operator.one_worker`):
     with every core each, four transform threads shared two cores, and at 513 x 513 the
     coarse levels ended 2.4 s later and the fine frictionless solve took 5.2 s instead of
-    3.9 s (one run each). From ``options.overlap_from`` grid nodes on."""
+    3.9 s (one run each). From ``options.overlap_from`` grid nodes on. Without ``levels``
+    no frictional coarse level (its start comes from elsewhere) and ``None`` for it."""
     ops, mu = setup.ops, friction.mu
     g = ops.grid
     ww, profile = ops.op("ww"), setup.profile
     kw = dict(load=setup.load, indentation=setup.indentation, dense_limit=friction.dense_limit // 3,
               rtol=options.start_rtol if mu > 0 else options.frictionless_rtol)
-    if normal is None and mu > 0 and g.nodes_x * g.nodes_y >= options.overlap_from and cores() > 1:
+    levels = levels and mu > 0
+    if normal is None and levels and g.nodes_x * g.nodes_y >= options.overlap_from and cores() > 1:
         below = coarse_solution(ww, profile, **kw)
         if below is not None:
             # the grid's field spectra, which the first fine measure reads, built by the
@@ -216,7 +233,7 @@ def _first_solves(setup: RollingSetup, friction: Friction, normal: NormalContact
             return normal, coarse
     if normal is None:
         normal = solve_normal(ww, profile, **kw)
-    return normal, (_coarse_solution(setup, friction, progress, options, normal.coarse) if mu > 0 else None)
+    return normal, (_coarse_solution(setup, friction, progress, options, normal.coarse) if levels else None)
 
 
 def _frictionless_prepared(setup: RollingSetup, solves: LinearSolves, ww, profile, below, kw,

@@ -15,7 +15,8 @@ from .active_set import ActiveSetResult, LinearSolves, run_active_set
 from .options import SolverOptions
 from .system import RollingSetup, SetState
 
-__all__ = ["frictionless_start", "saturation_creepage", "coarse_start", "coarse_forces", "continuation"]
+__all__ = ["frictionless_start", "saturation_creepage", "coarse_start", "coarse_forces", "nodes_within",
+           "restricted_start", "continuation"]
 
 
 def frictionless_start(N0: np.ndarray, ell: np.ndarray, speed: float, friction: Friction,
@@ -132,6 +133,65 @@ def coarse_forces(coarse_result, shape: tuple[int, int], N0: np.ndarray, d0: flo
     Sy = np.where(contact, prolonged(res.force_y, shape).ravel() / 4, 0.0)
     d = d0 + (res.indentation - below.indentation if below is not None else 0.0)
     return N0, Sx, Sy, d, res.omega
+
+
+def nodes_within(fine, grid) -> tuple[np.ndarray, np.ndarray] | None:
+    """The indices ``(j, i)`` of ``fine``'s nodes that sit on the nodes of ``grid``
+    (``ix_``-style: rows ``(K_y, 1)``, columns ``(1, K_x)``; a line contact's one row) when ``grid``'s spacings are
+    whole multiples of ``fine``'s and every node of ``grid`` is a node of ``fine`` (to 1e-9
+    of its spacing), as the grid error's levels are of the case's grid
+    (:func:`bem.frictional.grid_error.coarsened_grid`); else ``None``."""
+    index = []
+    for ax in "xy":
+        K, k = getattr(fine, f"nodes_{ax}"), getattr(grid, f"nodes_{ax}")
+        if K == k == 1:  # the one row of a line contact
+            index.append(np.zeros(1, int))
+            continue
+        step = getattr(grid, f"spacing_{ax}") / getattr(fine, f"spacing_{ax}")
+        # node i of a grid of K nodes sits at (i - (K - 1) / 2) spacing (bem.grid.Grid)
+        at = (np.arange(k) - (k - 1) / 2) * step + (K - 1) / 2
+        i = np.rint(at).astype(int)
+        if abs(step - round(step)) > 1e-9 or np.abs(at - i).max() > 1e-9 or i.min() < 0 or i.max() >= K:
+            return None
+        index.append(i)
+    ix, iy = index
+    return iy[:, None], ix[None, :]
+
+
+def restricted_start(finer, grid, N0: np.ndarray, d0: float, mu: float) -> tuple[SetState, tuple] | None:
+    """Start sets and first iterate on ``grid`` from a solution on a grid that holds its
+    nodes (``finer``, a :class:`~bem.frictional.model.FrictionalContact`; the grid error's
+    levels from the case's own solution); ``None`` when ``grid``'s nodes are not among
+    ``finer``'s (:func:`nodes_within`). The contact is ``grid``'s frictionless one (``N0``,
+    N, flat); a node slips where the node under it slips, along its force, with ``k = |w| /
+    (mu N0)`` from its slip speed; the first iterate (``forces`` of
+    :func:`~bem.frictional.active_set.run_active_set`) is ``(N0, S_x, S_y, d0, Omega)``, the
+    tangential forces read there times the ratio of the node areas (a nodal force is the
+    traction times the node's area) and ``Omega`` the solved one.
+
+    A grid twice as coarse has sets that differ from the finer one's by its own grid
+    error, a node or two at the stick/slip border, and slip directions and speeds close
+    to its own; measured in ``tests/bem/frictional/test_grid_error.py``.
+    """
+    at = nodes_within(finer.grid, grid)
+    if at is None:
+        return None
+    rows, cols = at
+    contact = N0 > 0
+
+    def read(a):
+        return np.asarray(a)[rows, cols].ravel()
+
+    Sx, Sy = read(finer.force_x), read(finer.force_y)
+    wmag, smag = np.hypot(read(finer.slip_x), read(finer.slip_y)), np.hypot(Sx, Sy)
+    slip = contact & read(finer.contact & ~finer.stick) & (smag > 0) & (wmag > 0)
+    direction = np.zeros((N0.size, 2))
+    slope = np.zeros(N0.size)
+    direction[slip] = np.stack([Sx, Sy], 1)[slip] / smag[slip, None]
+    slope[slip] = wmag[slip] / (mu * N0[slip])
+    areas = grid.cell_area / finer.grid.cell_area
+    state = SetState(contact=contact, stick=contact & ~slip, direction=direction, slope=slope)
+    return state, (N0, np.where(contact, Sx * areas, 0.0), np.where(contact, Sy * areas, 0.0), d0, finer.omega)
 
 
 def continuation(setup: RollingSetup, friction: Friction, N0: np.ndarray, solves: LinearSolves,

@@ -236,3 +236,30 @@ def test_prolonged_is_exact_on_bilinear_fields_and_coarse_forces_scale_by_the_no
     np.testing.assert_allclose(Sx, np.where(N0 > 0, 0.2, 0.0), rtol=1e-14)
     np.testing.assert_allclose(Sy, np.where(N0 > 0, f.ravel() / 4, 0.0), rtol=0, atol=1e-13)
     assert coarse_forces(coarse, (Ky, Kx), N0, 1.1e-4)[3] == 1.1e-4  # no coarse frictionless solution
+
+
+def test_nodes_within_finds_the_grid_error_levels_on_the_case_grid_and_nothing_else():
+    """The levels coarsened by 2 and 4 (``coarsened_grid``) sit on every second node and on
+    every fourth from the third (61 nodes at 0.2 mm: 31 at 0.4 mm, 15 at 0.8 mm from
+    -5.6 mm); an even count at twice the spacing sits between the axis's neighbours. A
+    spacing 1.5 times the case's, or a region wider than the case's, has nodes off it."""
+    from bem import Grid
+    from bem.frictional.grid_error import coarsened_grid
+    from bem.frictional.starts import nodes_within
+
+    fine = Grid.centred((0.2e-3, 0.2e-3), (0.6, 0.6), (1500, 1500), (6e-3, 6e-3))
+    rows, cols = nodes_within(fine, coarsened_grid(fine, 2))
+    np.testing.assert_array_equal(cols.ravel(), np.arange(0, 61, 2))
+    np.testing.assert_array_equal(rows.ravel(), np.arange(0, 61, 2))
+    rows, cols = nodes_within(fine, coarsened_grid(fine, 4))
+    np.testing.assert_array_equal(cols.ravel(), np.arange(2, 59, 4))
+    X, Y = fine.coordinates()
+    Xc, Yc = coarsened_grid(fine, 4).coordinates()
+    np.testing.assert_allclose(X[rows, cols], Xc, rtol=0, atol=1e-15)
+    np.testing.assert_allclose(Y[rows, cols], Yc, rtol=0, atol=1e-15)
+    assert nodes_within(fine, fine) is not None
+    even = Grid(0.4e-3, 0.4e-3, 0.6, 0.6, 750, 750, 30, 31)
+    np.testing.assert_array_equal(nodes_within(fine, even)[1].ravel(), np.arange(1, 60, 2))
+    assert nodes_within(fine, Grid.centred((0.3e-3, 0.4e-3), (0.6, 0.6), (1000, 750), (6e-3, 6e-3))) is None
+    assert nodes_within(fine, Grid(0.4e-3, 0.4e-3, 0.6, 0.6, 750, 750, 32, 31)) is None  # wider than the case
+    assert nodes_within(coarsened_grid(fine, 2), fine) is None  # finer than the solved grid
