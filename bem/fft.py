@@ -15,7 +15,8 @@ against every transform in scipy.fft (9 alternated pairs, loaded machine): 1.05 
 long at 61 x 61 (every transform in numpy.fft), 1.03 at 121 x 121 (single precision in
 scipy.fft; 1.14 with numpy.fft throughout).
 
-Only the calls and arguments that :mod:`bem` uses are here; ``workers`` is keyword-only.
+Only the calls and arguments that :mod:`bem` uses are here; ``workers`` and ``out`` (an
+array of the result's shape and type to write it into) are keyword-only.
 """
 
 from __future__ import annotations
@@ -44,34 +45,40 @@ def _lib(x, workers: int):
     return scipy.fft, {"workers": workers}, x
 
 
-def fft(x, n=None, axis=-1, *, workers=1):
+def _run(name, x, args, workers, out):
+    """Transform ``name`` of ``x`` with the positional ``args`` on ``workers`` threads, into
+    ``out`` when given (numpy.fft writes there; scipy.fft's result is copied in)."""
     lib, kw, x = _lib(x, workers)
-    return lib.fft(x, n, axis, **kw)
+    if out is None:
+        return getattr(lib, name)(x, *args, **kw)
+    if lib is np.fft:
+        return getattr(np.fft, name)(x, *args, out=out)
+    out[...] = getattr(lib, name)(x, *args, **kw)
+    return out
 
 
-def ifft(x, n=None, axis=-1, *, workers=1):
-    lib, kw, x = _lib(x, workers)
-    return lib.ifft(x, n, axis, **kw)
+def fft(x, n=None, axis=-1, *, workers=1, out=None):
+    return _run("fft", x, (n, axis), workers, out)
 
 
-def rfft(x, n=None, axis=-1, *, workers=1):
-    lib, kw, x = _lib(x, workers)
-    return lib.rfft(x, n, axis, **kw)
+def ifft(x, n=None, axis=-1, *, workers=1, out=None):
+    return _run("ifft", x, (n, axis), workers, out)
 
 
-def irfft(x, n=None, axis=-1, *, workers=1):
-    lib, kw, x = _lib(x, workers)
-    return lib.irfft(x, n, axis, **kw)
+def rfft(x, n=None, axis=-1, *, workers=1, out=None):
+    return _run("rfft", x, (n, axis), workers, out)
+
+
+def irfft(x, n=None, axis=-1, *, workers=1, out=None):
+    return _run("irfft", x, (n, axis), workers, out)
 
 
 def rfft2(x, s=None, *, workers=1):
-    lib, kw, x = _lib(x, workers)
-    return lib.rfft2(x, s, **kw)
+    return _run("rfft2", x, (s,), workers, None)
 
 
 def irfft2(x, s=None, *, workers=1):
-    lib, kw, x = _lib(x, workers)
-    return lib.irfft2(x, s, **kw)
+    return _run("irfft2", x, (s,), workers, None)
 
 
 @functools.lru_cache(maxsize=256)

@@ -40,6 +40,16 @@ def test_transforms_equal_scipys(workers, dtype):
     for ours, theirs in pairs:
         assert ours.dtype == theirs.dtype
         assert np.abs(ours - theirs).max() <= tol * np.abs(theirs).max()
+    # into a given array: a view of a larger one, and the input itself
+    padded = np.zeros((3, 16, 9), z.dtype)
+    rows = fft.rfft(x, 16, workers=workers, out=padded[:, :12])
+    assert np.shares_memory(rows, padded)
+    np.testing.assert_allclose(padded[:, :12], scipy.fft.rfft(x, 16), rtol=0, atol=tol * 40)
+    assert not padded[:, 12:].any()
+    full = fft.fft(padded, None, -2, workers=workers, out=padded)
+    assert np.shares_memory(full, padded)
+    theirs = scipy.fft.fft(scipy.fft.rfft(x, 16), 16, -2)
+    assert np.abs(padded - theirs).max() <= tol * np.abs(theirs).max()
 
 
 def test_the_library_by_threads_precision_and_size():
