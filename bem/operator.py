@@ -39,7 +39,8 @@ from . import fft as sfft
 from .grid import Grid
 from .threads import cores
 
-__all__ = ["ComplianceOperator", "THREADED_FROM", "fft_workers", "one_worker", "periodic_size", "BLOCKS_KEPT", "Block"]
+__all__ = ["ComplianceOperator", "THREADED_FROM", "fft_workers", "one_worker", "periodic_size", "spectrum_of",
+           "values_of", "BLOCKS_KEPT", "Block"]
 
 #: FFTs of an embedding with this many points or more run on every core, smaller ones on
 #: one (a small transform costs less than handing it over). Measured, whole solves with the
@@ -76,6 +77,26 @@ def periodic_size(nodes: int) -> int:
     while sfft.next_fast_len(n, real=True) != n:
         n -= 1
     return n
+
+
+def spectrum_of(f: np.ndarray, size: tuple[int, int], workers: int = 1) -> np.ndarray:
+    """The 2-D real transform ``(..., E_y, E_x / 2 + 1)`` of fields ``f`` ``(..., K_y, K_x)``
+    zero-padded to ``size`` ``(E_y, E_x)``: each row transformed into a zero-padded
+    spectrum, whose columns are then transformed in place, skipping the padding's zero
+    rows (with :func:`values_of`, a product by a circulant embedding: 107 against 146 us
+    at 61 x 61 nodes, embedding 125 x 125, than ``rfft2`` and ``irfft2`` padding inside
+    the transforms). Single precision for ``float32`` fields."""
+    Ey, Ex = size
+    F = np.zeros(f.shape[:-2] + (Ey, Ex // 2 + 1), np.result_type(f.dtype, np.complex64))
+    sfft.rfft(f, Ex, workers=workers, out=F[..., :f.shape[-2], :])
+    return sfft.fft(F, None, -2, workers=workers, out=F)
+
+
+def values_of(F: np.ndarray, rows: int, size: tuple[int, int], workers: int = 1) -> np.ndarray:
+    """The inverse of :func:`spectrum_of` on the first ``rows`` rows, all ``E_x`` columns
+    (``(..., rows, E_x)``); ``F`` is overwritten."""
+    sfft.ifft(F, None, -2, workers=workers, out=F)
+    return sfft.irfft(F[..., :rows, :], size[1], workers=workers)
 
 
 def _wrapped(table: np.ndarray, axis: int, period: int) -> np.ndarray:
@@ -174,16 +195,18 @@ class ComplianceOperator:
         """``C f`` for nodal forces of shape ``(K_y, K_x)`` (N); returns m, same shape."""
         Ky, Kx = self.grid.shape
         f = np.asarray(forces, dtype=float).reshape(Ky, Kx)
-        out = sfft.irfft2(sfft.rfft2(f, s=self._size, workers=self._workers) * self._hat, s=self._size, workers=self._workers)
-        return out[:Ky, :Kx]
+        F = spectrum_of(f, self._size, self._workers)
+        F *= self._hat
+        return values_of(F, Ky, self._size, self._workers)[:, :Kx]
 
     def apply_transpose(self, forces: np.ndarray) -> np.ndarray:
         """``C^T f`` (the operator is not symmetric in steady rolling): the conjugate
         spectrum of the real kernel turns the circular convolution into a correlation."""
         Ky, Kx = self.grid.shape
         f = np.asarray(forces, dtype=float).reshape(Ky, Kx)
-        out = sfft.irfft2(sfft.rfft2(f, s=self._size, workers=self._workers) * np.conj(self._hat), s=self._size, workers=self._workers)
-        return out[:Ky, :Kx]
+        F = spectrum_of(f, self._size, self._workers)
+        F *= np.conj(self._hat)
+        return values_of(F, Ky, self._size, self._workers)[:, :Kx]
 
     @property
     def has_circulant_inverse(self) -> bool:
@@ -223,9 +246,9 @@ class ComplianceOperator:
         Ky, Kx = self.grid.shape
         f = np.asarray(values, dtype=float).reshape(Ky, Kx)
         workers = fft_workers(self._period)
-        out = sfft.irfft2(sfft.rfft2(f, s=self._period, workers=workers) * self._inv_hat, s=self._period,
-                          workers=workers)
-        return out[:Ky, :Kx]
+        F = spectrum_of(f, self._period, workers)
+        F *= self._inv_hat
+        return values_of(F, Ky, self._period, workers)[:, :Kx]
 
     def block(self, shape: tuple[int, int]) -> "ComplianceOperator":
         """The operator between the nodes of a block of ``shape`` = ``(rows, columns)`` nodes

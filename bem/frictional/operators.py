@@ -10,7 +10,7 @@ from .. import fft as sfft
 
 from ..grid import Grid
 from ..kinematics import upwind_table
-from ..operator import ComplianceOperator, fft_workers
+from ..operator import ComplianceOperator, fft_workers, spectrum_of, values_of
 from ..plane import LineGrid
 from .options import SolverOptions
 
@@ -105,18 +105,12 @@ class RollingOperators:
 
     # the 2-D transforms one axis at a time, skipping the embedding's zero rows on the way
     # in and the rows off the grid on the way out (40-55 % less work than rfft2), on the
-    # callers' threads; the rows' transforms go straight into the zero-padded spectrum,
-    # which the columns' transform then overwrites: 106 against 129 us for 3 x 54 x 54
-    # single-precision forces (embedding 108 x 108) than padding inside the transform
+    # callers' threads
     def _forward(self, f, workers):
-        Ey, Ex = self.op("ww").embedding
-        F = np.zeros((f.shape[0], Ey, Ex // 2 + 1), np.result_type(f.dtype, np.complex64))
-        sfft.rfft(f, Ex, workers=workers, out=F[:, :f.shape[1]])
-        return sfft.fft(F, None, -2, workers=workers, out=F)
+        return spectrum_of(f, self.op("ww").embedding, workers)
 
     def _inverse(self, F, workers):
-        emb = self.op("ww").embedding
-        return sfft.irfft(sfft.ifft(F, None, -2, workers=workers)[:, :self.grid.nodes_y], emb[1], workers=workers)
+        return values_of(F, self.grid.nodes_y, self.op("ww").embedding, workers)
 
     def row_filter(self, power: float, dtype=np.complex128, *, long: float | None = None,
                    waves: float = SolverOptions.filter_waves) -> np.ndarray:
