@@ -1,9 +1,5 @@
-"""bem.fft: NumPy's transforms on one thread, SciPy's on more, the same numbers either way,
-and a small solve that never imports scipy.fft (its import is a third of a small run)."""
-
-import subprocess
-import sys
-from pathlib import Path
+"""bem.fft: NumPy's transforms on one thread, SciPy's on more, the same numbers either way
+(that a small solve never imports scipy.fft: tests/bem/test_startup.py)."""
 
 import numpy as np
 import pytest
@@ -12,7 +8,6 @@ import scipy.fft
 from bem import fft
 
 RNG = np.random.default_rng(7)
-CASE = Path(__file__).resolve().parents[2] / "examples" / "elastic-paraboloid-creepage.toml"
 
 
 def test_next_fast_len_is_scipys_rule():
@@ -61,14 +56,3 @@ def test_the_library_by_threads_precision_and_size():
         assert fft._lib(x, workers)[0] is lib, (x.shape, x.dtype, workers)
     big = RNG.standard_normal((3, 90, 90)).astype(np.float32)
     np.testing.assert_array_equal(fft.rfft(big, 128), scipy.fft.rfft(big, 128))
-
-
-def test_a_small_frictional_solve_does_not_import_scipy_fft():
-    code = ("import sys\n"
-            "from bem.cli import main\n"
-            f"assert main(['solve', {str(CASE)!r}, '--quiet', "
-            "'--no-error-estimate', '--set', 'grid.spacing=0.4e-3', '--set', 'grid.truncation=750']) == 0\n"
-            "print(sorted(m for m in ('scipy.fft', 'scipy.ndimage', 'scipy.special', 'scipy.sparse') "
-            "if m in sys.modules))\n")
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
-    assert out.splitlines()[-1] == "[]"
