@@ -15,8 +15,7 @@ against every transform in scipy.fft (9 alternated pairs, loaded machine): 1.05 
 long at 61 x 61 (every transform in numpy.fft), 1.03 at 121 x 121 (single precision in
 scipy.fft; 1.14 with numpy.fft throughout).
 
-Only the calls and arguments that :mod:`bem` uses are here; ``workers`` and ``out`` (an
-array of the result's shape and type to write it into) are keyword-only.
+Only the calls and arguments that :mod:`bem` uses are here; ``workers`` is keyword-only.
 """
 
 from __future__ import annotations
@@ -25,7 +24,7 @@ import functools
 
 import numpy as np
 
-__all__ = ["fft", "ifft", "rfft", "irfft", "rfft2", "irfft2", "next_fast_len", "SINGLE_FROM"]
+__all__ = ["fft", "ifft", "rfft", "irfft", "rfft2", "irfft2", "in_numpy", "next_fast_len", "SINGLE_FROM"]
 
 
 #: single-precision transforms of this many input values or more run in scipy.fft (module
@@ -45,40 +44,39 @@ def _lib(x, workers: int):
     return scipy.fft, {"workers": workers}, x
 
 
-def _run(name, x, args, workers, out):
-    """Transform ``name`` of ``x`` with the positional ``args`` on ``workers`` threads, into
-    ``out`` when given (numpy.fft writes there; scipy.fft's result is copied in)."""
+def in_numpy(x, workers: int = 1) -> bool:
+    """Whether a transform of ``x`` on ``workers`` threads runs in numpy.fft (see above)."""
+    return _lib(x, workers)[0] is np.fft
+
+
+def _run(name, x, args, workers):
+    """Transform ``name`` of ``x`` with the positional ``args`` on ``workers`` threads."""
     lib, kw, x = _lib(x, workers)
-    if out is None:
-        return getattr(lib, name)(x, *args, **kw)
-    if lib is np.fft:
-        return getattr(np.fft, name)(x, *args, out=out)
-    out[...] = getattr(lib, name)(x, *args, **kw)
-    return out
+    return getattr(lib, name)(x, *args, **kw)
 
 
-def fft(x, n=None, axis=-1, *, workers=1, out=None):
-    return _run("fft", x, (n, axis), workers, out)
+def fft(x, n=None, axis=-1, *, workers=1):
+    return _run("fft", x, (n, axis), workers)
 
 
-def ifft(x, n=None, axis=-1, *, workers=1, out=None):
-    return _run("ifft", x, (n, axis), workers, out)
+def ifft(x, n=None, axis=-1, *, workers=1):
+    return _run("ifft", x, (n, axis), workers)
 
 
-def rfft(x, n=None, axis=-1, *, workers=1, out=None):
-    return _run("rfft", x, (n, axis), workers, out)
+def rfft(x, n=None, axis=-1, *, workers=1):
+    return _run("rfft", x, (n, axis), workers)
 
 
-def irfft(x, n=None, axis=-1, *, workers=1, out=None):
-    return _run("irfft", x, (n, axis), workers, out)
+def irfft(x, n=None, axis=-1, *, workers=1):
+    return _run("irfft", x, (n, axis), workers)
 
 
 def rfft2(x, s=None, *, workers=1):
-    return _run("rfft2", x, (s,), workers, None)
+    return _run("rfft2", x, (s,), workers)
 
 
 def irfft2(x, s=None, *, workers=1):
-    return _run("irfft2", x, (s,), workers, None)
+    return _run("irfft2", x, (s,), workers)
 
 
 @functools.lru_cache(maxsize=256)
