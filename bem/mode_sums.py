@@ -19,8 +19,8 @@ from . import fft as sfft
 
 from .batches import in_batches
 
-__all__ = ["chirp_sum", "turns", "circle_table", "trig_table", "over_n", "over_m", "over_m_mirrored", "lattice_half", "cos_sums",
-           "sin_sums"]
+__all__ = ["chirp_sum", "turns", "circle_table", "trig_table", "over_n", "over_m", "over_m_mirrored", "lattice_half",
+           "cos_sums", "sin_sums"]
 
 
 def chirp_sum(c: np.ndarray, ratio: float, j0: int, count: int, weight: np.ndarray | None = None,

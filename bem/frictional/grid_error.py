@@ -28,12 +28,12 @@ Cost: the two coarse levels (a quarter and a sixteenth of the nodes, a half and 
 quarter of the modes each way) add their kernels and solves. Their nodes are the case's
 (every second and every fourth), so each level starts from the solution of the level
 above on its nodes (:func:`bem.frictional.starts.restricted_start`), which leaves it the
-few border nodes and slip directions its own grid error changes. On
-``examples/elastic-paraboloid-creepage.toml`` at 0.2 mm (one thread) the whole ``bem
-solve`` takes 0.35 s against 0.29 s without the estimate (0.43 s when the levels started
-from their frictionless contacts); the levels' solves 47 and 13 ms (75 and 22 ms). ``bem solve`` makes the estimate for every frictional case
-unless told not to (``--no-error-estimate``): no frictional figure is printed without its
-error.
+few border nodes and slip directions its own grid error changes: on
+``examples/elastic-paraboloid-creepage.toml`` at 0.2 mm the levels' solves take 47 and
+13 ms against 75 and 22 ms from their frictionless contacts, and the whole ``bem solve``
+0.34 s against 0.26 s without the estimate (one thread; BENCHMARKS.md, "External
+references"). ``bem solve`` makes the estimate for every frictional case unless told not
+to (``--no-error-estimate``): no frictional figure is printed without its error.
 """
 
 from __future__ import annotations

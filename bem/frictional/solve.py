@@ -48,9 +48,10 @@ def solve_friction(problem: Problem, friction: Friction, progress: Callable[[str
     given ``kernels`` lack them, about 2 s at ``N_t = 2000``); otherwise it
     is ``nan``. ``finer``: a solution of the same case on a grid that holds this grid's
     nodes (the grid error's levels, :func:`bem.frictional.grid_error.estimate_grid_error`),
-    which then starts the iteration (:func:`solve_rolling`). A plane-strain problem (a :class:`bem.plane.LineGrid`) takes the line
-    kernels (:func:`bem.plane.line_kernels`) and :func:`bem.plane.line_dissipation`: every
-    force per unit length (N/m, the energy figure too).
+    which then starts the iteration (:func:`solve_rolling`). A plane-strain problem (a
+    :class:`bem.plane.LineGrid`) takes the line kernels (:func:`bem.plane.line_kernels`)
+    and :func:`bem.plane.line_dissipation`: every force per unit length (N/m, the energy
+    figure too).
 
     Raises
     ------

@@ -137,10 +137,10 @@ def coarse_forces(coarse_result, shape: tuple[int, int], N0: np.ndarray, d0: flo
 
 def nodes_within(fine, grid) -> tuple[np.ndarray, np.ndarray] | None:
     """The indices ``(j, i)`` of ``fine``'s nodes that sit on the nodes of ``grid``
-    (``ix_``-style: rows ``(K_y, 1)``, columns ``(1, K_x)``; a line contact's one row) when ``grid``'s spacings are
-    whole multiples of ``fine``'s and every node of ``grid`` is a node of ``fine`` (to 1e-9
-    of its spacing), as the grid error's levels are of the case's grid
-    (:func:`bem.frictional.grid_error.coarsened_grid`); else ``None``."""
+    (``ix_``-style: rows ``(K_y, 1)``, columns ``(1, K_x)``; a line contact's one row)
+    when ``grid``'s spacings are whole multiples of ``fine``'s and every node of ``grid``
+    is a node of ``fine`` (to 1e-9 of its spacing), as the grid error's levels are of the
+    case's grid (:func:`bem.frictional.grid_error.coarsened_grid`); else ``None``."""
     index = []
     for ax in "xy":
         K, k = getattr(fine, f"nodes_{ax}"), getattr(grid, f"nodes_{ax}")
