@@ -192,7 +192,7 @@ def main(argv: list[str] | None = None) -> int:
     s.add_argument("--error-estimate", action=argparse.BooleanOptionalAction, default=None,
                    help="with friction: solve again on the grid coarsened by 2 and 4 and give each frictional "
                         "figure's Richardson limit and grid error (the frictional figures converge at first "
-                        "order: one grid's value is no better than its error; about twice the cost); "
+                        "order: one grid's value is no better than its error; 1.1-1.4 times the time of the solve alone); "
                         "default: on with [friction], --no-error-estimate to skip it")
     sub.add_parser("dma", add_help=False, help="DMA CSV to master curve, Prony fit and figures "
                    "(bem dma --help; docs/materials.md)")
