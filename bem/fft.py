@@ -1,21 +1,36 @@
 """The discrete Fourier transforms of :mod:`bem`: NumPy's on one thread, SciPy's on more.
 
-numpy.fft and scipy.fft are the same library (pocketfft). Best of three repetitions, one
-thread, at the sizes the solvers use, a forward and inverse pair in double precision by
-NumPy took 0.88-1.27 times SciPy's (0.97-1.06 from 128 x 128 points on; the extra at
-64 x 64 is 10 us of call overhead); in single precision 3.0-3.4 times (the frictional
-solver's fields of 3 x 61 x 61 and 3 x 121 x 121 nodes: SciPy vectorises over rows).
-SciPy adds threads (``workers``), which pay from :data:`bem.operator.THREADED_FROM`
-points on, and its import costs a process about 0.17 s (it loads scipy.special and the
-array-API layer), a third of a small ``bem solve``. So a transform runs in numpy.fft
-when it is asked of one thread and is in double precision or smaller than
-:data:`SINGLE_FROM` values; otherwise scipy.fft runs it, imported by the first such
-transform. Measured, the frictional solve of ``examples/elastic-paraboloid-creepage.toml``
-against every transform in scipy.fft (9 alternated pairs, loaded machine): 1.05 times as
-long at 61 x 61 (every transform in numpy.fft), 1.03 at 121 x 121 (single precision in
-scipy.fft; 1.14 with numpy.fft throughout).
+numpy.fft and scipy.fft are the same library (pocketfft). SciPy adds threads
+(``workers``), which pay from :data:`bem.operator.THREADED_FROM` points on; its import
+costs a process 0.135 s (it loads scipy.special and the array-API layer; median of five,
+after numpy), a fifth of a ``bem solve`` at 0.1 mm. So a transform runs in numpy.fft when
+it is asked of one thread, in scipy.fft (imported by the first such transform) when asked
+of more. On one thread the two take the same time: the frictional products' pruned
+transforms (:func:`bem.operator.spectrum_of`, :func:`~bem.operator.values_of`) of three
+single-precision fields from 61 x 61 to 241 x 241 nodes, NumPy's forward 0.99-1.01 times
+SciPy's and inverse 1.02-1.07 (best of five, malloc's thresholds raised so that no
+transform meets fresh pages); in double precision 0.88-1.27 (0.97-1.06 from 128 x 128
+points on; the extra at 64 x 64 is 10 us of call overhead).
 
-Only the calls and arguments that :mod:`bem` uses are here; ``workers`` is keyword-only.
+NumPy's unnormalised single-precision forward transforms (``fft``, ``rfft``, ``rfft2``
+with the default ``norm``) pass the scale as the Python number 1, and its transform
+ufuncs then take their double-precision loop, casting the data in and out through
+buffers (numpy 2.4): the columns' ``fft`` of 3 x 108 x 55 complex64 values took 65 us
+against 38 us in the single-precision loop. With ``norm="forward"`` the scale is a
+float32 and the single-precision loop runs, so :func:`fft`, :func:`rfft` and
+:func:`rfft2` ask for that and multiply the result by the transform's length (rounding of
+single precision, about 1e-7). The inverse transforms' default scale, ``1 / n``, is a
+float32 already.
+
+NumPy also pads a transform of ``n`` values longer than its input slowly (per
+transform, inside its loop): the rows' ``rfft`` of 363 x 121 values padded to 243 took
+338 us in single precision and 299 us in double, against 133 and 180 us for the same
+transform of an array padded beforehand and 130 and 189 us by SciPy; the columns'
+``fft`` of 3 x 61 x 63 complex values to 125, 123 against 101 us (SciPy 91). So
+:func:`fft` and :func:`rfft` pad in an array of their own first.
+
+Only the calls and arguments that :mod:`bem` uses are here; ``workers`` and ``out`` (the
+result's array) are keyword-only.
 """
 
 from __future__ import annotations
@@ -24,47 +39,73 @@ import functools
 
 import numpy as np
 
-__all__ = ["fft", "ifft", "rfft", "irfft", "rfft2", "irfft2", "in_numpy", "next_fast_len", "SINGLE_FROM"]
+__all__ = ["fft", "ifft", "rfft", "irfft", "rfft2", "irfft2", "in_numpy", "next_fast_len"]
 
 
-#: single-precision transforms of this many input values or more run in scipy.fft (module
-#: docstring): the frictional solver's fields from about 82 x 82 nodes on (3 fields)
-SINGLE_FROM = 20_000
+#: numpy.fft's forward transforms, run in single precision by a float32 scale (module docstring)
+_FORWARD = ("fft", "rfft", "rfft2")
 
 
 def _lib(x, workers: int):
     """The module that runs a transform of ``x`` on ``workers`` threads, the keyword it
     takes, and ``x`` as an array."""
     x = np.asarray(x)
-    single = x.dtype in (np.float32, np.complex64)
-    if workers == 1 and (not single or x.size < SINGLE_FROM):
+    if in_numpy(workers):
         return np.fft, {}, x
     import scipy.fft
 
     return scipy.fft, {"workers": workers}, x
 
 
-def in_numpy(x, workers: int = 1) -> bool:
-    """Whether a transform of ``x`` on ``workers`` threads runs in numpy.fft (see above)."""
-    return _lib(x, workers)[0] is np.fft
+def in_numpy(workers: int = 1) -> bool:
+    """Whether a transform on ``workers`` threads runs in numpy.fft (see above)."""
+    return workers == 1
 
 
-def _run(name, x, args, workers):
-    """Transform ``name`` of ``x`` with the positional ``args`` on ``workers`` threads."""
+def _run(name, x, args, workers, out=None):
+    """Transform ``name`` of ``x`` with the positional ``args`` on ``workers`` threads,
+    into ``out`` when given (numpy.fft writes there, scipy.fft's result is copied)."""
     lib, kw, x = _lib(x, workers)
-    return getattr(lib, name)(x, *args, **kw)
+    if lib is not np.fft:
+        y = getattr(lib, name)(x, *args, **kw)
+        if out is None:
+            return y
+        out[...] = y
+        return out
+    if name in ("fft", "rfft") and args[0] is not None and args[0] > x.shape[args[1]]:
+        x, args = _padded(x, *args), (None, args[1])  # zero-padded here (module docstring)
+    if name not in _FORWARD or x.dtype not in (np.float32, np.complex64):
+        return getattr(np.fft, name)(x, *args, out=out)
+    # the single-precision loop by a float32 scale (module docstring), then times the length
+    y = getattr(np.fft, name)(x, *args, norm="forward", out=out)
+    if name == "rfft2":
+        s = args[0] if args[0] is not None else x.shape[-2:]
+        y *= np.float32(s[0] * s[1])
+    else:
+        n, axis = args
+        y *= np.float32(x.shape[axis] if n is None else n)
+    return y
 
 
-def fft(x, n=None, axis=-1, *, workers=1):
-    return _run("fft", x, (n, axis), workers)
+def _padded(x, n, axis):
+    """``x`` zero-padded to ``n`` values along ``axis``."""
+    shape = list(x.shape)
+    shape[axis] = n
+    out = np.zeros(shape, x.dtype)
+    out[(slice(None),) * (axis % x.ndim) + (slice(0, x.shape[axis]),)] = x
+    return out
+
+
+def fft(x, n=None, axis=-1, *, workers=1, out=None):
+    return _run("fft", x, (n, axis), workers, out)
 
 
 def ifft(x, n=None, axis=-1, *, workers=1):
     return _run("ifft", x, (n, axis), workers)
 
 
-def rfft(x, n=None, axis=-1, *, workers=1):
-    return _run("rfft", x, (n, axis), workers)
+def rfft(x, n=None, axis=-1, *, workers=1, out=None):
+    return _run("rfft", x, (n, axis), workers, out)
 
 
 def irfft(x, n=None, axis=-1, *, workers=1):

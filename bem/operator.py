@@ -86,15 +86,15 @@ def spectrum_of(f: np.ndarray, size: tuple[int, int], workers: int = 1) -> np.nd
     zero-padded spectrum whose columns are then transformed in place: 107 against 146 us
     at 61 x 61 nodes (embedding 125 x 125, with :func:`values_of`) than ``rfft2`` and
     ``irfft2``, and 106 against 129 us for 3 x 54 x 54 single-precision fields (108 x 108)
-    than padding inside the columns' transform; scipy.fft (threads, large single-precision
-    fields: :mod:`bem.fft`) pads inside, 0.75 ms against 1.6 ms the other way for 3 x 218
-    x 218 fields (450 x 450) on two threads. Single precision for ``float32`` fields."""
+    than padding inside the columns' transform; scipy.fft (on more threads: :mod:`bem.fft`)
+    pads inside, 0.75 ms against 1.6 ms the other way for 3 x 218 x 218 fields (450 x 450)
+    on two threads. Single precision for ``float32`` fields."""
     Ey, Ex = size
-    if not sfft.in_numpy(f, workers):
+    if not sfft.in_numpy(workers):
         return sfft.fft(sfft.rfft(f, Ex, workers=workers), Ey, -2, workers=workers)
     F = np.zeros(f.shape[:-2] + (Ey, Ex // 2 + 1), np.result_type(f.dtype, np.complex64))
-    np.fft.rfft(f, Ex, out=F[..., :f.shape[-2], :])
-    return np.fft.fft(F, None, -2, out=F)
+    sfft.rfft(f, Ex, out=F[..., :f.shape[-2], :])
+    return sfft.fft(F, None, -2, out=F)
 
 
 def values_of(F: np.ndarray, rows: int, size: tuple[int, int], workers: int = 1) -> np.ndarray:

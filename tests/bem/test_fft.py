@@ -37,15 +37,37 @@ def test_transforms_equal_scipys(workers, dtype):
         assert np.abs(ours - theirs).max() <= tol * np.abs(theirs).max()
 
 
-def test_the_library_by_threads_precision_and_size():
-    small, large = np.ones((3, 40, 40)), np.ones((3, 90, 90))  # 4800 and 24 300 values
-    assert large.size >= fft.SINGLE_FROM > small.size
-    for x, workers, lib in [(small, 1, np.fft), (large, 1, np.fft), (small.astype(np.float32), 1, np.fft),
-                            (large.astype(np.float32), 1, scipy.fft), (large.astype(np.complex64), 1, scipy.fft),
-                            (large.astype(np.complex128), 1, np.fft), (small, 2, scipy.fft), (small, -1, scipy.fft)]:
-        assert fft._lib(x, workers)[0] is lib, (x.shape, x.dtype, workers)
-    big = RNG.standard_normal((3, 90, 90)).astype(np.float32)
-    np.testing.assert_array_equal(fft.rfft(big, 128), scipy.fft.rfft(big, 128))
+def test_the_library_by_threads():
+    """One worker: numpy.fft in either precision and at any size; more: scipy.fft."""
+    small, large = np.ones((3, 40, 40)), np.ones((3, 250, 250))
+    for x in (small, large):
+        for dtype in (np.float64, np.float32, np.complex128, np.complex64):
+            assert fft._lib(x.astype(dtype), 1)[0] is np.fft, (x.shape, dtype)
+            assert fft._lib(x.astype(dtype), 2)[0] is scipy.fft, (x.shape, dtype)
+    assert fft._lib(small, -1)[0] is scipy.fft
+    assert fft.in_numpy(1) and not fft.in_numpy(2)
+
+
+@pytest.mark.parametrize("shape, args", [((3, 90, 90), ("rfft", 128, -1)), ((3, 90, 90), ("rfft", None, 0)),
+                                         ((2, 108, 55), ("fft", None, -2)), ((2, 108, 55), ("fft", 125, 1)),
+                                         ((3, 40, 30), ("rfft2", (50, 64)))])
+def test_single_precision_forward_transforms_are_unnormalised(shape, args):
+    """numpy.fft's single-precision forward transforms run with the scale 1/n as a float32
+    and are multiplied back by n (bem.fft's docstring): the unnormalised transform, to
+    single precision, of the length asked for (padded or cut), complex64 out; into
+    ``out`` when given."""
+    name, *rest = args
+    x = RNG.standard_normal(shape).astype(np.float32)
+    if name == "fft":
+        x = (x + 1j * RNG.standard_normal(shape)).astype(np.complex64)
+    ours = getattr(fft, name)(x, *rest)
+    exact = getattr(scipy.fft, name)(x.astype(np.complex128 if name == "fft" else np.float64), *rest)
+    assert ours.dtype == np.complex64 and ours.shape == exact.shape
+    assert np.abs(ours - exact).max() <= 1e-6 * np.abs(exact).max()
+    if name != "rfft2":
+        out = np.zeros(exact.shape, np.complex64)
+        assert getattr(fft, name)(x, *rest, out=out) is out
+        np.testing.assert_array_equal(out, ours)
 
 
 @pytest.mark.parametrize("workers", [1, 2])
