@@ -40,7 +40,7 @@ from .grid import Grid
 from .threads import cores
 
 __all__ = ["ComplianceOperator", "THREADED_FROM", "fft_workers", "one_worker", "periodic_size", "spectrum_of",
-           "values_of", "BLOCKS_KEPT", "Block"]
+           "values_of", "wrapped", "BLOCKS_KEPT", "Block"]
 
 #: FFTs of an embedding with this many points or more run on every core, smaller ones on
 #: one (a small transform costs less than handing it over). Measured, whole solves with the
@@ -103,7 +103,7 @@ def values_of(F: np.ndarray, rows: int, size: tuple[int, int], workers: int = 1)
     return sfft.irfft(sfft.ifft(F, None, -2, workers=workers)[..., :rows, :], size[1], workers=workers)
 
 
-def _wrapped(table: np.ndarray, axis: int, period: int) -> np.ndarray:
+def wrapped(table: np.ndarray, axis: int, period: int) -> np.ndarray:
     """The kernel ``table`` (offsets ``-(K-1) .. K-1`` along ``axis``) wrapped onto
     ``period`` (at most ``2 K - 2``): offset ``d`` at index ``d mod period`` for ``|d| <=
     period / 2``, the two ends of an even period averaged (they share an index)."""
@@ -220,8 +220,8 @@ class ComplianceOperator:
         if not hasattr(self, "_inv_hat"):
             Ky, Kx = self.grid.shape
             self._period = (periodic_size(Ky), periodic_size(Kx))
-            wrapped = _wrapped(_wrapped(self.kernel, 0, self._period[0]), 1, self._period[1])
-            self._periodic_hat = sfft.rfft2(wrapped, workers=fft_workers(self._period))
+            table = wrapped(wrapped(self.kernel, 0, self._period[0]), 1, self._period[1])
+            self._periodic_hat = sfft.rfft2(table, workers=fft_workers(self._period))
             mag = np.abs(self._periodic_hat)
             self._inv_hat = 1.0 / self._periodic_hat if mag.min() > 1e-12 * mag.max() else None
         return self._inv_hat is not None

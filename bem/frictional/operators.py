@@ -10,7 +10,7 @@ from .. import fft as sfft
 
 from ..grid import Grid
 from ..kinematics import upwind_table
-from ..operator import ComplianceOperator, fft_workers, spectrum_of, values_of
+from ..operator import ComplianceOperator, fft_workers, periodic_size, spectrum_of, values_of, wrapped
 from ..plane import LineGrid
 from .options import SolverOptions
 
@@ -51,7 +51,7 @@ class RollingOperators:
         self._ops: dict = {}
         self._stacked: dict = {}
         self._filters: dict = {}
-        self._placing: tuple = (None, None)
+        self._placing: dict = {}
         self._windows: dict = {}
 
     @property
@@ -112,22 +112,33 @@ class RollingOperators:
     def _inverse(self, F, workers):
         return values_of(F, self.grid.nodes_y, self.op("ww").embedding, workers)
 
+    @property
+    def filter_size(self) -> tuple[int, int]:
+        """The period ``(E_y, E_x)`` of :meth:`row_filter` and :meth:`filter_on`: per axis
+        the transform-friendly length (factors 2, 3, 5) from ``1.5 K`` nodes on, at most
+        :func:`bem.operator.periodic_size` (at most ``2 K - 2``, at least ``K``)."""
+        return tuple(min(sfft.next_fast_len(-(-3 * K // 2), real=True), periodic_size(K))
+                     for K in self.grid.shape)
+
     def row_filter(self, power: float, dtype=np.complex128, *, long: float | None = None,
                    waves: float = SolverOptions.filter_waves) -> np.ndarray:
         """The spectra ``(3, E_y, E_x / 2 + 1)`` of ``(C_row / C) ** q`` for the blocks
-        ``ww, uu, vv`` on this grid's embedding (-): ``C`` the block's symbol, ``C_row``
-        that of its kernel cut to one grid row (``C`` averaged over ``k_y``), what a solve
-        on lines along ``x`` sees. Where ``|C|`` is below 1e-3 of its largest it is taken
-        as that floor. The exponent ``q`` is ``power``; with ``long`` it runs from ``long``
-        on the longest waves to ``power`` on the short ones, ``q = power + (long - power)
-        exp(-(n / waves)^2)``, ``n`` the number of waves across this grid (``hypot(f_x K_x,
-        f_y K_y)``, ``f`` in cycles a node, ``K`` the nodes a side). Computed in double
-        precision, kept per exponent and ``dtype``; see
-        :mod:`bem.frictional.preconditioner`."""
+        ``ww, uu, vv`` on the period ``(E_y, E_x)`` = :attr:`filter_size` (-): ``C`` the
+        symbol of the block's kernel wrapped onto that period (every offset within half a
+        period at its true value, as the circulant of :meth:`bem.operator.
+        ComplianceOperator.circulant_inverse`), ``C_row`` that of its row through the
+        origin (``C`` averaged over ``k_y``), what a solve on lines along ``x`` sees. Where
+        ``|C|`` is below 1e-3 of its largest it is taken as that floor. The exponent ``q``
+        is ``power``; with ``long`` it runs from ``long`` on the longest waves to ``power``
+        on the short ones, ``q = power + (long - power) exp(-(n / waves)^2)``, ``n`` the
+        number of waves across this grid (``hypot(f_x K_x, f_y K_y)``, ``f`` in cycles a
+        node, ``K`` the nodes a side). Computed in double precision, kept per exponent and
+        ``dtype``; see :mod:`bem.frictional.preconditioner`, which has the figures of the
+        wrapped period against the products' zero-padded embedding."""
         key = (power, long, waves, np.dtype(dtype))
         if key not in self._filters:
             Ky, Kx = self.grid.shape
-            Ey, width = self.op("ww").embedding
+            Ey, width = self.filter_size
             q = power
             if long is not None:
                 n = np.hypot(np.fft.rfftfreq(width)[None, :] * Kx, np.fft.fftfreq(Ey)[:, None] * Ky)
@@ -135,14 +146,12 @@ class RollingOperators:
             out = []
             for name in ("ww", "uu", "vv"):
                 table = self.tables[name] if name in self.tables else self.kernels[name]
-                # the kernel cut to one grid row: its circulant's symbol is the row's
-                # transform along x, the same for every k_y
-                row = np.zeros(width)
-                row[np.arange(1 - Kx, Kx) % width] = table[Ky - 1]
-                full = self.op(name).spectrum
+                table = wrapped(wrapped(table, 0, Ey), 1, width)
+                full = sfft.rfft2(table)
                 mag = np.abs(full)
                 full = np.where(mag < 1e-3 * mag.max(), 1e-3 * mag.max(), full)
-                out.append((sfft.rfft(row) / full) ** q)
+                # the row through the origin: its transform along x is C averaged over k_y
+                out.append((sfft.rfft(table[0]) / full) ** q)
             self._filters[key] = np.stack(out).astype(dtype)
         return self._filters[key]
 
@@ -167,22 +176,23 @@ class RollingOperators:
 
     def filter_on(self, nodes: np.ndarray, values: np.ndarray, spectra: np.ndarray) -> np.ndarray:
         """The three rows of ``values`` ``(3, k)`` on the flat node indices ``nodes`` (``k``),
-        0 elsewhere, each multiplied in Fourier space by its row of ``spectra`` (e.g.
-        :meth:`row_filter`), read back at ``nodes``; in single precision when ``spectra``
-        is ``complex64``."""
+        0 elsewhere, each multiplied in Fourier space by its row of ``spectra`` on the
+        period :attr:`filter_size` (:meth:`row_filter`), read back at ``nodes``; in single
+        precision when ``spectra`` is ``complex64``."""
         real = np.float32 if spectra.dtype == np.complex64 else np.float64
-        workers = self._workers()
-        F = self._forward(self._scatter(nodes, values, real), workers)
+        size = self.filter_size
+        workers = fft_workers(size)
+        F = spectrum_of(self._scatter(nodes, values, real, size[1]), size, workers)
         F *= spectra
-        return self._gather(self._inverse(F, workers), nodes)
+        return self._gather(values_of(F, self.grid.nodes_y, size, workers), nodes, size[1])
 
-    def _scatter(self, nodes, values, dtype=np.float64):
-        """``values`` ``(3, k)`` at the flat grid indices ``nodes``, 0 elsewhere, in rows as
-        wide as the embedding ``(3, K_y, E)``: the forward transform along ``x`` then reads
-        them without a zero-padded copy."""
-        Ky, width = self.grid.nodes_y, self.op("ww").embedding[1]
+    def _scatter(self, nodes, values, dtype=np.float64, width=None):
+        """``values`` ``(3, k)`` at the flat grid indices ``nodes``, 0 elsewhere, in rows
+        ``width`` wide ``(3, K_y, width)``, by default the embedding's: the forward
+        transform along ``x`` then reads them without a zero-padded copy."""
+        Ky, width = self.grid.nodes_y, width or self.op("ww").embedding[1]
         f = np.zeros((3, Ky * width), dtype)
-        flat, mask = self._placed(nodes)
+        flat, mask = self._placed(nodes, width)
         if mask is None:
             f[:, flat] = values
         else:  # sorted nodes: a boolean mask per row, 5x faster than the fancy-indexed copy
@@ -190,25 +200,27 @@ class RollingOperators:
                 row[mask] = vals
         return f.reshape(3, Ky, width)
 
-    def _gather(self, out, nodes):
-        """``out`` ``(rows, K_y, E)`` (``E`` the embedding's width, fixed for these operators)
-        read at the flat grid indices ``nodes``."""
-        return np.take(out.reshape(out.shape[0], -1), self._placed(nodes)[0], axis=1)
+    def _gather(self, out, nodes, width=None):
+        """``out`` ``(rows, K_y, width)`` (by default the embedding's width) read at the flat
+        grid indices ``nodes``."""
+        return np.take(out.reshape(out.shape[0], -1), self._placed(nodes, width)[0], axis=1)
 
-    def _placed(self, nodes):
-        """For the flat grid indices ``nodes``: their flat positions in rows as wide as the
-        embedding and, when they increase, the boolean mask of those positions (else ``None``);
-        kept for the last ``nodes`` array (the same one in every product of a solve)."""
-        if self._placing[0] is not nodes:
+    def _placed(self, nodes, width=None):
+        """For the flat grid indices ``nodes``: their flat positions in rows ``width`` wide
+        (by default the embedding's) and, when they increase, the boolean mask of those
+        positions (else ``None``); kept per width for the last ``nodes`` array (the same one
+        in every product of a solve)."""
+        width = width or self.op("ww").embedding[1]
+        last = self._placing.get(width)
+        if last is None or last[0] is not nodes:
             j, i = np.divmod(nodes, self.grid.nodes_x)
-            width = self.op("ww").embedding[1]
             mask = None
             flat = j * width + i
             if np.all(np.diff(nodes) > 0):
                 mask = np.zeros(self.grid.nodes_y * width, bool)
                 mask[flat] = True
-            self._placing = (nodes, (flat, mask))
-        return self._placing[1]
+            last = self._placing[width] = (nodes, (flat, mask))
+        return last[1]
 
     def displacements(self, N, Sx, Sy):
         """Horizontal surface displacements ``u, v`` (m)."""

@@ -32,28 +32,38 @@ def kernels():
 
 
 def test_the_row_symbol_is_the_full_symbol_averaged_over_ky(kernels):
-    """``row_filter(1) = C_row / C`` with ``C_row`` the symbol of the kernel cut to its own
-    grid row, which is ``C`` averaged over ``k_y`` (a DFT identity, not how the code forms
-    it): checked where ``|C|`` is above the filter's floor, and the floor below it, for
-    ``ww, uu, vv``; ``row_filter(0.5) ** 2 = row_filter(1)``; the single-precision copy."""
+    """``row_filter(1) = C_row / C`` with ``C`` the symbol of the kernel wrapped onto the
+    filter's period and ``C_row`` that of its row through the origin, which is ``C``
+    averaged over ``k_y`` (a DFT identity, not how the code forms it): checked where
+    ``|C|`` is above the filter's floor (every mode here), for ``ww, uu, vv``;
+    ``row_filter(0.5) ** 2 = row_filter(1)``; the single-precision copy. The period is
+    the fast length from 1.5 nodes a node on, within ``[K, 2 K - 2]``."""
     ops = RollingOperators(GRID, kernels)
+    assert ops.filter_size == (48, 48)  # 31 nodes: 47 -> 48, at most 60
     one, half = ops.row_filter(1.0), ops.row_filter(0.5)
-    assert one.shape == (3,) + ops.op("ww").spectrum.shape
+    assert one.shape == (3, 48, 25)
     for c, name in enumerate(("ww", "uu", "vv")):
-        full = ops.op(name).spectrum
+        table = kernels[name]
+        # offsets within half the period at their true values (GRID is 31 x 31: centre 30)
+        d = np.arange(48)
+        d = np.where(d > 24, d - 48, d)
+        cut = table[np.ix_(30 + d, 30 + d)].copy()
+        cut[24, :] = 0.5 * (table[30 + 24, 30 + d] + table[30 - 24, 30 + d])
+        cut[:, 24] = 0.5 * (table[30 + d, 30 + 24] + table[30 + d, 30 - 24])
+        cut[24, 24] = 0.25 * (table[54, 54] + table[6, 54] + table[54, 6] + table[6, 6])
+        full = np.fft.rfft2(cut)
         above = np.abs(full) >= 1e-3 * np.abs(full).max()
         row = np.broadcast_to(full.mean(axis=0), full.shape)
         np.testing.assert_allclose((one[c] * full)[above], row[above], rtol=1e-10,
                                    atol=1e-12 * np.abs(row).max())
-        # below the floor (3-6 modes of 2112 here) C is taken as 1e-3 of its largest modulus
-        assert (~above).any()
-        np.testing.assert_allclose((one[c] * 1e-3 * np.abs(full).max())[~above], row[~above], rtol=1e-10)
+        # wrapped, the symbols keep above the floor (1e-3 of the largest modulus; measured
+        # 3.5e-3 and 3.7e-3 at their smallest): no mode is floored here
+        assert above.all()
         assert np.abs(one[c] - 1).max() > 0.5  # the neighbouring rows matter
     np.testing.assert_allclose(half ** 2, one, rtol=1e-12)
     single = ops.row_filter(0.5, np.complex64)
     assert single.dtype == np.complex64 and ops.row_filter(0.5) is half
     np.testing.assert_allclose(single, half, rtol=1e-6)
-
 
 
 def test_the_long_wave_power_blends_into_the_short_wave_power(kernels):
@@ -80,7 +90,7 @@ def test_the_long_wave_power_blends_into_the_short_wave_power(kernels):
     assert ops.row_filter(0.5, long=0.8, waves=3.0) is mid  # kept
     # the Gaussian's width: on the k_y = 0 row, one wave-width from zero the exponent has
     # come 1 - 1/e of the way to p, two widths 1 - e^-4
-    Ey, width = ops.op("ww").embedding
+    Ey, width = ops.filter_size
     n1 = 3 * GRID.nodes_x / width  # the waves across the grid at k_x index 3
     at = ops.row_filter(0.5, long=0.8, waves=n1)
     for i, want in ((3, 0.5 + 0.3 / np.e), (6, 0.5 + 0.3 * np.exp(-4))):
@@ -95,7 +105,7 @@ def test_filter_on_is_a_convolution_on_the_nodes(kernels):
     ``filter_on`` moves each value to its neighbour (0 entering), per row of values,
     read back on a node subset."""
     ops = RollingOperators(GRID, kernels)
-    Ey, Ex = ops.op("ww").embedding
+    Ey, Ex = ops.filter_size
     ky = np.fft.fftfreq(Ey)[:, None]
     kx = np.fft.rfftfreq(Ex)[None, :]
     shift = np.exp(-2j * np.pi * (2 * ky + 1 * kx))
@@ -120,7 +130,7 @@ def test_filter_on_is_a_convolution_on_the_nodes(kernels):
 def test_the_row_filter_cuts_gmres_iterations_on_a_converged_state(kernels, monkeypatch):
     """On the converged fine system of the 31 x 31 case, GMRES from zero to 1e-10 |b|
     with the lines alone and with the row filter (``filter_power``, one power, and the default
-    blend into ``filter_long``): measured 40, 28 and 27 iterations; asserted at least a fifth
+    blend into ``filter_long``): measured 40, 22 and 21 iterations; asserted at least a third
     fewer, all on the same solution (measured within 5e-8 of the largest entry; the
     residual, 1e-10 |b|, allows no better; 1e-6 asserted). The blend's own gain shows on
     longer runs (test below)."""
@@ -139,14 +149,14 @@ def test_the_row_filter_cuts_gmres_iterations_on_a_converged_state(kernels, monk
         assert ok
         out[long if power else 0] = x, its
     for key in (None, LONG):
-        assert out[key][1] <= 0.8 * out[0][1], (out[0][1], out[key][1])
+        assert out[key][1] <= 0.65 * out[0][1], (out[0][1], out[key][1])
         np.testing.assert_allclose(out[key][0], out[0][0], rtol=0, atol=1e-6 * np.abs(out[0][0]).max())
 
 
 def test_the_long_wave_blend_cuts_gmres_iterations_on_longer_runs(monkeypatch):
     """The elastic paraboloid at creepage 0.01 on a 61 x 61 grid (0.2 mm, runs of up to 52
     nodes), the converged fine system, GMRES from zero to 1e-10 |b|: the row filter at one
-    power against the default blend into ``filter_long`` over ``filter_waves``: measured 29 against 26
+    power against the default blend into ``filter_long`` over ``filter_waves``: measured 27 against 24
     iterations (single precision, as in the solver); asserted at least 2 fewer (a count
     that may move by one with the machine's rounding)."""
     grid = Grid.centred((0.2e-3, 0.2e-3), (0.6, 0.6), (1500, 1500), (6e-3, 6e-3))
