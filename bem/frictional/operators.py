@@ -3,6 +3,7 @@ densely on node subsets (SI units: kernels in m/N, differenced kernels in 1/N)."
 
 from __future__ import annotations
 
+import functools
 from dataclasses import replace
 
 import numpy as np
@@ -112,7 +113,7 @@ class RollingOperators:
     def _inverse(self, F, workers):
         return values_of(F, self.grid.nodes_y, self.op("ww").embedding, workers)
 
-    @property
+    @functools.cached_property
     def filter_size(self) -> tuple[int, int]:
         """The period ``(E_y, E_x)`` of :meth:`row_filter` and :meth:`filter_on`: per axis
         the transform-friendly length (factors 2, 3, 5) from ``1.5 K`` nodes on, at most

@@ -101,16 +101,15 @@ class RollingSetup:
         return np.isfinite(self.profile)
 
 
-def force_rows(stick, dir_x, dir_y, slope, mu, diag, gap, Dx, Dy, N, Sx, Sy):
+def force_rows(B, dir_x, dir_y, slope, mu, diag, gap, Dx, Dy, N, Sx, Sy):
     """The rows of the forces' unknowns, ``(3 m, k)`` for ``m`` contact nodes and ``k``
     columns: gap rows, then the ``x`` and ``y`` rows (stick: ``Dx, Dy``; slip: the slip law).
 
-    ``stick`` (bool, ``m``), ``dir_x, dir_y, slope`` on the slip nodes (in their order;
-    ``slope`` already times ``a_x / V``), ``gap, Dx, Dy`` (``m x k``) the gap and the
-    upwind differences ``a_x w / V`` without the rigid creep, ``N, Sx, Sy`` (``m x k``).
+    ``B`` the slip nodes (indices into the contact, increasing), ``dir_x, dir_y, slope``
+    on them (``slope`` already times ``a_x / V``), ``gap, Dx, Dy`` (``m x k``) the gap and
+    the upwind differences ``a_x w / V`` without the rigid creep, ``N, Sx, Sy`` (``m x k``).
     """
-    m = stick.size
-    B = np.flatnonzero(~stick)
+    m = gap.shape[0]
     out = np.empty((3 * m, gap.shape[1]))
     # every row as a stick row first (contiguous copies), then the slip rows over them:
     # fancy-indexed copies of the stick rows cost twice the whole for one column
@@ -176,7 +175,7 @@ class SetSystem:
         if self.free_d:
             gap = gap - X[self.iD]
         out = np.empty((self.n, X.shape[1]))
-        out[:3 * nC] = force_rows(self.stick, self.dir_x, self.dir_y, self.slope, self.setup.mu, self.diag,
+        out[:3 * nC] = force_rows(self.B, self.dir_x, self.dir_y, self.slope, self.setup.mu, self.diag,
                                   gap, Dx, Dy, X[:nC], X[nC:2 * nC], X[2 * nC:3 * nC])
         out[3 * nC:] = self.global_rows(X[:3 * nC])
         return out
