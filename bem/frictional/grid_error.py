@@ -29,9 +29,10 @@ quarter of the modes each way) add their kernels and solves. Their nodes are the
 (every second and every fourth), so each level starts from the solution of the level
 above on its nodes (:func:`bem.frictional.starts.restricted_start`), which leaves it the
 few border nodes and slip directions its own grid error changes: on
-``examples/elastic-paraboloid-creepage.toml`` at 0.2 mm the levels' solves take 47 and
-13 ms against 75 and 22 ms from their frictionless contacts, and the whole ``bem solve``
-0.34 s against 0.26 s without the estimate (one thread; BENCHMARKS.md, "External
+``examples/elastic-paraboloid-creepage.toml`` at 0.2 mm the levels' solves take 48 and
+17 ms against 78 and 29 ms from their frictionless contacts (medians of five in one
+process), and the whole ``bem solve`` 0.31 s against 0.25 s without the estimate (one
+thread; BENCHMARKS.md, "External
 references"). ``bem solve`` makes the estimate for every frictional case unless told not
 to (``--no-error-estimate``): no frictional figure is printed without its error.
 """
