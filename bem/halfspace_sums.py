@@ -219,6 +219,11 @@ def square_sums(nu: np.ndarray, weight: np.ndarray, ratio: float, count: int, pa
     even = "ww" in parts or "uu" in parts
     P = {key: np.empty((N, count)) for key, need in (("F", even), ("D", "uu" in parts), ("uv", "uv" in parts))
          if need}
+    # the factors of n folded into the tables: D = 1 / k - 2 nu_n^2 / k^3 takes the product
+    # of 1 / k^3 with nu_n^2 C, nu_x nu_y / k^3 that with nu_n S (no elementwise pass over
+    # the batch's modes: 2.7 of 20 ms at N_t = 1500)
+    C2 = (nu * nu)[:, None] * C if "D" in P else None
+    S1 = nu[:, None] * S if "uv" in P else None
 
     def work(start: int) -> None:
         e = min(start + chunk, N)
@@ -229,9 +234,9 @@ def square_sums(nu: np.ndarray, weight: np.ndarray, ratio: float, count: int, pa
         if even:
             P["F"][start:e] = inv_k @ C[start:]
         if "D" in P:
-            P["D"][start:e] = (inv_k3 * (nu[start:e, None] ** 2 - nu[None, start:] ** 2)) @ C[start:]
+            P["D"][start:e] = P["F"][start:e] - 2.0 * (inv_k3 @ C2[start:])
         if "uv" in P:
-            P["uv"][start:e] = ((inv_k3 * nu[None, start:]) @ S[start:]) * nu[start:e, None]
+            P["uv"][start:e] = (inv_k3 @ S1[start:]) * nu[start:e, None]
 
     in_batches(N, work, chunk)
     d_inv_k, d_inv_k3 = _powers_of_k2(2 * nu * nu)  # the diagonal m = n
