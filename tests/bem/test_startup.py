@@ -1,5 +1,5 @@
 """What a small ``bem solve`` loads: only the modules it uses. scipy.fft's import is about a
-third of a small run (:mod:`bem.fft`); zipfile (with shutil, bz2, lzma), json and
+third of a small run (:mod:`bem.fft`), and the kernels' lattice sums do without it; zipfile (with shutil, bz2, lzma), json and
 concurrent.futures (with logging) took 5.4, 1.4 and 3.7 ms of every start when loaded
 for a height map's errors, ``--json`` and threads a one-core run never starts, and
 argparse's own formatter imports shutil (2.8 ms; :class:`bem.cli._Formatter`)."""
@@ -19,6 +19,25 @@ def test_a_small_frictional_solve_on_one_core_loads_no_module_it_does_not_use():
             "from bem.cli import main\n"
             f"assert main(['solve', {str(CASE)!r}, '--quiet', "
             "'--no-error-estimate', '--set', 'grid.spacing=0.4e-3', '--set', 'grid.truncation=750']) == 0\n"
+            f"print(sorted(m for m in {UNUSED!r} if m in sys.modules))\n")
+    env = {"PATH": "/usr/bin:/bin", "OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1"}
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True, env=env).stdout
+    assert out.splitlines()[-1] == "[]"
+
+
+def test_lattice_kernels_above_128_nodes_a_side_load_no_scipy_fft():
+    """The kernels of a grid of more than 128 nodes a side whose period is a whole number
+    of node pairs (``L = 2 Q a``: the DCT-I / DST-I sums of :mod:`bem.mode_sums`) run in
+    numpy.fft: a one-core process does not import scipy.fft for them (0.135 s)."""
+    code = ("import sys\n"
+            "from bem import Elastic, Grid, Layer, Loading, Paraboloid, Problem\n"
+            "from bem.mode_sums import lattice_half\n"
+            "from bem.problem import compute_kernels\n"
+            "from bem.spectral import BLOCKS\n"
+            "grid = Grid.centred((1e-4, 1e-4), (0.06, 0.06), (300, 300), (6.4e-3, 6.4e-3))\n"
+            "assert grid.shape == (129, 129) and lattice_half(1e-4 / 0.06, 301, 129) == 300\n"
+            "problem = Problem(Layer(0.02, Elastic(3e6), 0.0), Paraboloid(0.02), grid, Loading(1.0, load=10.0))\n"
+            "compute_kernels(problem, BLOCKS)\n"
             f"print(sorted(m for m in {UNUSED!r} if m in sys.modules))\n")
     env = {"PATH": "/usr/bin:/bin", "OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1"}
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True, env=env).stdout
