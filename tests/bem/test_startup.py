@@ -9,7 +9,8 @@ import subprocess
 import sys
 from pathlib import Path
 
-CASE = Path(__file__).resolve().parents[2] / "examples" / "elastic-paraboloid-creepage.toml"
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
+CASE = EXAMPLES / "elastic-paraboloid-creepage.toml"
 UNUSED = ("scipy.fft", "scipy.ndimage", "scipy.special", "scipy.sparse", "shutil", "zipfile", "json",
           "concurrent.futures", "logging", "threadpoolctl")
 
@@ -19,6 +20,19 @@ def test_a_small_frictional_solve_on_one_core_loads_no_module_it_does_not_use():
             "from bem.cli import main\n"
             f"assert main(['solve', {str(CASE)!r}, '--quiet', "
             "'--no-error-estimate', '--set', 'grid.spacing=0.4e-3', '--set', 'grid.truncation=750']) == 0\n"
+            f"print(sorted(m for m in {UNUSED!r} if m in sys.modules))\n")
+    env = {"PATH": "/usr/bin:/bin", "OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1"}
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True, env=env).stdout
+    assert out.splitlines()[-1] == "[]"
+
+
+def test_a_line_contact_loads_no_scipy():
+    """A plane-strain solve (examples/rolling-line-2d.toml, 201 nodes): its kernels' and
+    dissipation's chirp-z sums run on one thread in numpy.fft, so the process imports
+    neither scipy.fft nor, through it, scipy.special (0.27 -> 0.12 s a whole run)."""
+    code = ("import sys\n"
+            "from bem.cli import main\n"
+            f"assert main(['solve', {str(EXAMPLES / 'rolling-line-2d.toml')!r}, '--quiet']) == 0\n"
             f"print(sorted(m for m in {UNUSED!r} if m in sys.modules))\n")
     env = {"PATH": "/usr/bin:/bin", "OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1"}
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True, env=env).stdout
