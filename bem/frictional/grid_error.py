@@ -32,9 +32,9 @@ few border nodes and slip directions its own grid error changes: on
 ``examples/elastic-paraboloid-creepage.toml`` at 0.2 mm the levels' solves take 48 and
 17 ms against 78 and 29 ms from their frictionless contacts (medians of five in one
 process), and the whole ``bem solve`` 0.31 s against 0.25 s without the estimate (one
-thread; BENCHMARKS.md, "External
-references"). ``bem solve`` makes the estimate for every frictional case unless told not
-to (``--no-error-estimate``): no frictional figure is printed without its error.
+thread; BENCHMARKS.md, "External references"). ``bem solve`` makes the estimate for
+every frictional case unless told not to (``--no-error-estimate``): no frictional figure
+is printed without its error.
 """
 
 from __future__ import annotations

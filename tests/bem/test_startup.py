@@ -1,5 +1,6 @@
-"""What a small ``bem solve`` loads: only the modules it uses. scipy.fft's import is about a
-third of a small run (:mod:`bem.fft`), and the kernels' lattice sums do without it; zipfile (with shutil, bz2, lzma), json and
+"""What a small ``bem solve`` loads: only the modules it uses. scipy.fft's import (0.135 s,
+:mod:`bem.fft`) is about half of a small run; the kernels' lattice sums and a line contact's
+chirp-z sums do without it. zipfile (with shutil, bz2, lzma), json and
 concurrent.futures (with logging) took 5.4, 1.4 and 3.7 ms of every start when loaded
 for a height map's errors, ``--json`` and threads a one-core run never starts, and
 argparse's own formatter imports shutil (2.8 ms; :class:`bem.cli._Formatter`)."""
@@ -29,7 +30,8 @@ def test_a_small_frictional_solve_on_one_core_loads_no_module_it_does_not_use():
 def test_a_line_contact_loads_no_scipy():
     """A plane-strain solve (examples/rolling-line-2d.toml, 201 nodes): its kernels' and
     dissipation's chirp-z sums run on one thread in numpy.fft, so the process imports
-    neither scipy.fft nor, through it, scipy.special (0.27 -> 0.12 s a whole run)."""
+    neither scipy.fft nor, through it, scipy.special (0.14 s together; the whole run takes
+    0.12 s)."""
     code = ("import sys\n"
             "from bem.cli import main\n"
             f"assert main(['solve', {str(EXAMPLES / 'rolling-line-2d.toml')!r}, '--quiet']) == 0\n"

@@ -37,7 +37,8 @@ def test_the_row_symbol_is_the_full_symbol_averaged_over_ky(kernels):
     averaged over ``k_y`` (a DFT identity, not how the code forms it): checked where
     ``|C|`` is above the filter's floor (every mode here), for ``ww, uu, vv``;
     ``row_filter(0.5) ** 2 = row_filter(1)``; the single-precision copy. The period is
-    the fast length from 1.5 nodes a node on, within ``[K, 2 K - 2]``."""
+    the transform-friendly length from 1.5 times the nodes a side on, within ``[K, 2 K -
+    2]``."""
     ops = RollingOperators(GRID, kernels)
     assert ops.filter_size == (48, 48)  # 31 nodes: 47 -> 48, at most 60
     one, half = ops.row_filter(1.0), ops.row_filter(0.5)
