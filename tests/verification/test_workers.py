@@ -127,7 +127,9 @@ def test_a_worker_that_dies_fails_its_case_and_the_run_goes_on(tmp_path, capsys)
 def test_an_interrupt_ends_the_run_and_its_local_cluster(group, tmp_path):
     cases = tmp_path / "cases"
     cases.mkdir()
-    slow = THICK_LAYER_CASE.replace("spacings = [0.2e-3]", "spacings = [0.2e-3, 0.1e-3, 0.05e-3, 0.025e-3]")
+    # a case that runs long enough for the interrupt to find it running: 2.6 s on one worker
+    # (down to 0.025 mm it took 0.6 s, and a loaded machine could deliver the signal after it)
+    slow = THICK_LAYER_CASE.replace("spacings = [0.2e-3]", "spacings = [0.2e-3, 0.1e-3, 0.05e-3, 0.025e-3, 0.0125e-3]")
     (cases / "hs.toml").write_text(slow)
     out = tmp_path / "out"
     proc = subprocess.Popen([str(VERIFY), "--cases-dir", str(cases), "--workers", "1", "--out", str(out)],
