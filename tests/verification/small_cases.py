@@ -39,3 +39,12 @@ def assert_refused(kind: str, case: dict, edits, path="case.toml") -> None:
         edit(bad)
         with pytest.raises(CaseError, match=message):
             KINDS[kind].check(bad, path, {})
+
+
+def default_sigint() -> None:
+    """``preexec_fn`` of a child that is to answer Ctrl-C as in a terminal: a shell starts
+    background jobs (a CI script's, say) with SIGINT ignored, and Python keeps an ignored
+    SIGINT (no KeyboardInterrupt); the child gets the default disposition back."""
+    import signal
+
+    signal.signal(signal.SIGINT, signal.SIG_DFL)

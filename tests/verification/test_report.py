@@ -16,6 +16,7 @@ import pytest
 
 from verification import report as report_module
 from verification.report import drift, load_baseline, write_report
+from tests.verification.small_cases import default_sigint
 from verification.results import CaseResult, Gate, Run
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -123,16 +124,10 @@ def test_summary_names_the_worst_gate_of_each_case(tmp_path):
     assert len(lines) < 25  # one screen
 
 
-def _default_sigint():
-    # a shell starts background jobs with SIGINT ignored, and Python keeps an ignored SIGINT
-    # (no KeyboardInterrupt): the child gets the default disposition, as in a terminal
-    signal.signal(signal.SIGINT, signal.SIG_DFL)
-
-
 def _run_verify(args, cwd):
     env = dict(os.environ, PYTHONUNBUFFERED="1")
     return subprocess.Popen([sys.executable, "-m", "verification.cli", *args], cwd=cwd, env=env,
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, preexec_fn=_default_sigint)
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, preexec_fn=default_sigint)
 
 
 @pytest.mark.parametrize("sig, code", [(signal.SIGINT, 130), (signal.SIGTERM, 130), (signal.SIGKILL, -9)])
