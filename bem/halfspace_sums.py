@@ -9,18 +9,22 @@ with a little inertia every block is a short series in ``eps = rho V^2 nu_x^2 / 
 trigonometric table (or the chirp) once, the factors of ``m`` onto the ``(rows, 2 K_y -
 1)`` partial sums, and no complex symbol of every mode is formed. The sums are the terms
 of :func:`bem.mode_sums.over_n`, reordered.
-On a square grid with one real modulus the symbols are symmetric in ``(m, n)`` (or
-antisymmetric) and :func:`square_sums` sums the modes ``n >= m`` alone.
+On a square grid with one real modulus :func:`square_sums` separates the double sums
+altogether: ``1 / k`` and ``1 / k^3`` as sums of about 140 Gaussians ``exp(-alpha k^2) =
+exp(-alpha nu_x^2) exp(-alpha nu_y^2)`` (:func:`inverse_power_gaussians`), each a product of
+two sums over one direction.
 """
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
-from .batches import in_batches
 from .mode_sums import cos_sums, lattice_half, over_n, sin_sums, trig_table
 
 __all__ = ["HALFSPACE_KH", "INERTIA_SERIES", "halfspace_symbols", "inverse_powers", "even_sums", "odd_sum",
+           "inverse_power_gaussians", "GAUSSIAN_STEP",
            "series_arrays", "series_factor", "series_sums", "square_sums"]
 
 #: ``k H`` beyond which a mode does not see the base: the layer's compliance is the
@@ -199,59 +203,69 @@ def _mirror(h: np.ndarray, sign: float) -> np.ndarray:
     return np.concatenate([sign * h[:, :0:-1], h], axis=1)
 
 
-def square_sums(nu: np.ndarray, weight: np.ndarray, ratio: float, count: int, parts, chunk: int) -> dict:
+def inverse_power_gaussians(k_min: float, k_max: float, powers=(1, 3)) -> tuple[np.ndarray, dict]:
+    """Exponents ``alpha`` (m^2), shared, and for each ``p`` of ``powers`` (odd) weights
+    ``c[p]`` (m^p) with ``k^-p = sum_q c[p]_q exp(-alpha_q k^2)`` to 2e-15 relative for
+    ``k_min <= k <= k_max`` (1/m): about 140 terms at ``k_max / k_min = 2000``, 170 at 10^5.
+
+    From ``k^-p = 2 / Gamma(p / 2) int exp(-k^2 e^(2 s) + p s) ds`` over the real line (``t =
+    e^s`` in ``int_0^inf t^(p - 1) exp(-k^2 t^2) dt = Gamma(p / 2) / (2 k^p)``) by the
+    trapezoidal rule in ``s``, step :data:`GAUSSIAN_STEP`, on nodes that every ``p`` shares:
+    the integrand is analytic in the strip ``|Im s| < pi / 4``, so the error falls as
+    ``exp(-pi^2 / (2 h))``. The nodes run from where ``exp(-k_min^2 e^(2 s)) e^(p s)`` is
+    below 1e-17 down to where the tail ``e^(p s)`` is 1e-17 of ``k_max^-p``; the nodes with
+    ``alpha k_max^2 < 1e-6`` are one term for each ``p``, of its summed weight and mean
+    exponent (what is left is second order in ``alpha k^2``). ``docs/derivations.md``,
+    section 14."""
+    top = 0.5 * math.log(40.0 + 3 * max(powers))
+    bottom = min(math.log(1e-17) / p for p in powers) - math.log(k_max / k_min)
+    s = top - GAUSSIAN_STEP * np.arange(int((top - bottom) / GAUSSIAN_STEP) + 1)
+    alpha = np.exp(2 * s) / k_min**2
+    flat = alpha * k_max**2 < 1e-6
+    weights = {p: (2 / math.gamma(p / 2) * GAUSSIAN_STEP / k_min**p) * np.exp(p * s) for p in powers}
+    tails = [(w[flat].sum(), (w[flat] * alpha[flat]).sum()) for w in weights.values()]
+    c = {p: np.concatenate([w[~flat], np.zeros(len(powers))]) for p, w in weights.items()}
+    for i, p in enumerate(powers):
+        c[p][flat.size - flat.sum() + i] = tails[i][0]
+    return np.concatenate([alpha[~flat], [t / w for w, t in tails]]), c
+
+
+#: the trapezoidal step of :func:`inverse_power_gaussians` in ``s = log t`` (2e-15 at 0.12,
+#: 6e-15 for ``p = 3`` at 0.13, 1.5e-14 for ``p = 1`` at 0.15)
+GAUSSIAN_STEP = 0.12
+
+
+def square_sums(nu: np.ndarray, weight: np.ndarray, ratio: float, count: int, parts) -> dict:
     """``G`` times the half-space kernels ``ww, uu, uv`` (m/N times Pa) of a square lattice
     of modes (the same ``nu`` (rad/m), ``weight`` (1/m) and ``ratio = a / L`` along ``x`` and
-    ``y``) and a constant real ``G``, by matrix products on half the modes: real tables
-    ``(2 count - 1, 2 count - 1)`` of the ``parts`` asked, ``chunk`` rows of ``m`` a batch.
+    ``y``) and a constant real ``G``, as sums of separable Gaussians: real tables ``(2 count -
+    1, 2 count - 1)`` of the ``parts`` asked.
 
     With ``C = w (2 cos)`` and ``S = w (2 sin)`` (:func:`bem.mode_sums.over_n`'s tables,
-    ``N x count``), ``2 G ww = C' F C`` with ``F = 1 / k`` symmetric in ``(m, n)``: ``C' F C =
-    X + X' - C' diag(F) C``, ``X = C' (U C)``, ``U`` the upper triangle of ``F``, summed
-    row by row over ``n >= m`` only. ``G uu = 1 / k - nu_x^2 / (2 k^3)`` and ``nu_x^2 / k^3
-    = (1 / k + D) / 2`` with ``D = (nu_x^2 - nu_y^2) / k^3`` antisymmetric (``C' D C = Y -
-    Y'``), so ``G uu = (3 C' F C - C' D C) / 4``; ``2 G uv = S' (nu_x nu_y / k^3) S``, symmetric
-    again (:func:`halfspace_symbols`). ``C' F C`` is indexed ``[dx, dy]``, the
-    tables ``[dy, dx]``."""
+    ``N x count``) the sums over ``m, n >= 0`` are ``2 G ww = C' F C``, ``F = 1 / k`` (0 at
+    ``k = 0``), ``G uu = C' (F - nu_x^2 / (2 k^3)) C`` and ``2 G uv = S' (nu_x nu_y / k^3) S``
+    (:func:`halfspace_symbols`). With ``k^-p = sum_q c_q exp(-alpha_q nu_x^2) exp(-alpha_q
+    nu_y^2)`` (:func:`inverse_power_gaussians`) each is ``sum_q c_q A_q' B_q`` of the rows of
+    products of ``E = exp(-alpha nu^2)`` (Q x N, the same for both powers) with a table:
+    ``O(Q N count)``, not ``O(N^2 count)``. The mode ``k = 0`` that the Gaussians give ``F``
+    (``sum c_q``) is taken off. ``C' F C`` is indexed ``[dx, dy]``, the tables ``[dy, dx]``."""
     N = nu.size
+    nu2 = nu * nu
+    alpha, c = inverse_power_gaussians(nu[1], math.sqrt(2.0) * nu[-1])
+    E = np.exp(-np.outer(alpha, nu2))
     C = weight[:, None] * trig_table(ratio, N, count, False)
-    S = weight[:, None] * trig_table(ratio, N, count, True)
-    even = "ww" in parts or "uu" in parts
-    P = {key: np.empty((N, count)) for key, need in (("F", even), ("D", "uu" in parts), ("uv", "uv" in parts))
-         if need}
-    # the factors of n folded into the tables: D = 1 / k - 2 nu_n^2 / k^3 takes the product
-    # of 1 / k^3 with nu_n^2 C, nu_x nu_y / k^3 that with nu_n S (no elementwise pass over
-    # the batch's modes: 2.7 of 20 ms at N_t = 1500)
-    C2 = (nu * nu)[:, None] * C if "D" in P else None
-    S1 = nu[:, None] * S if "uv" in P else None
-
-    def work(start: int) -> None:
-        e = min(start + chunk, N)
-        inv_k, inv_k3 = inverse_powers(nu[start:e], nu[start:])
-        lower = np.tri(e - start, k=-1, dtype=bool)  # n < m in the leading block
-        inv_k[:, : e - start][lower] = 0.0
-        inv_k3[:, : e - start][lower] = 0.0
-        if even:
-            P["F"][start:e] = inv_k @ C[start:]
-        if "D" in P:
-            P["D"][start:e] = P["F"][start:e] - 2.0 * (inv_k3 @ C2[start:])
-        if "uv" in P:
-            P["uv"][start:e] = (inv_k3 @ S1[start:]) * nu[start:e, None]
-
-    in_batches(N, work, chunk)
-    d_inv_k, d_inv_k3 = _powers_of_k2(2 * nu * nu)  # the diagonal m = n
+    A = E @ C
     out = {}
-    if even:
-        X = C.T @ P["F"]
-        F = X + X.T - C.T @ (d_inv_k[:, None] * C)
+    if "ww" in parts or "uu" in parts:
+        F = (A.T * c[1]) @ A - c[1].sum() * np.outer(C[0], C[0])
         if "ww" in parts:
             out["ww"] = _unfold(0.5 * F, 1.0)
-        if "uu" in parts:
-            Y = C.T @ P["D"]
-            out["uu"] = _unfold((0.75 * F - 0.25 * (Y - Y.T)).T, 1.0)
+    if "uu" in parts:
+        X2 = ((E * nu2) @ C).T * c[3] @ A  # nu_x^2 / k^3
+        out["uu"] = _unfold((F - 0.5 * X2).T, 1.0)
     if "uv" in parts:
-        Z = S.T @ P["uv"]
-        out["uv"] = _unfold(0.5 * (Z + Z.T - S.T @ ((nu * nu * d_inv_k3)[:, None] * S)), -1.0)
+        B = (E * nu) @ (weight[:, None] * trig_table(ratio, N, count, True))
+        out["uv"] = _unfold(0.5 * (B.T * c[3]) @ B, -1.0)
     return out
 
 

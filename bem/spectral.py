@@ -18,7 +18,7 @@ symbols on the quarter ``m, n >= 0`` (reality ``g(-m, -n) = conj g(m, n)`` and p
 ``a / L`` at a cost of ``O(N_t^2 log N_t)``, or by DCT-I / DST-I when ``L = 2 Q a`` with
 ``Q >= N_t``. The deep modes of a layer without inertia, or with a little (``rho V^2 /
 |G| <= 1e-6``), need no complex symbol: their sums are of real arrays, ``1 / k`` and ``1 /
-k^3`` without inertia (on a square grid with one modulus, over the modes ``n >= m`` alone),
+k^3`` without inertia (on a square grid with one modulus, as sums of separable Gaussians),
 ``nu_x^a nu_y^b / k^p`` with it (:mod:`bem.halfspace_sums`). ``vu = uv`` is computed once. :func:`influence_kernels_direct` is the paper's route, summing every term for two
 source nodes, kept as the slow reference.
 
@@ -194,7 +194,7 @@ def _kernels_halfspace_split(grid: Grid, layer: Layer, speed: float, blocks: tup
     k^3``: the sums over ``n`` run on those real arrays (:mod:`bem.halfspace_sums`; real
     matrix products, DCT-I / DST-I on a lattice, or chirp-z above :data:`_MATMUL_NODES`
     nodes) before the factors of the row (``1 / G``, ``nu_x``); on a square grid with one real
-    ``G`` over the modes ``n >= m`` alone (:func:`bem.halfspace_sums.square_sums`). The
+    ``G`` as sums of separable Gaussians (:func:`bem.halfspace_sums.square_sums`). The
     normal-tangential blocks have no half-space part, ``vu = uv`` and ``vv = 3 ww - uu``. The modes near the origin take the
     exact symbols (:func:`bem.layer.compliance_blocks`) less the half-space ones. The same
     truncated sum as :func:`_kernels_streamed`, to rounding. With ``power`` the
@@ -232,9 +232,9 @@ def _kernels_halfspace_split(grid: Grid, layer: Layer, speed: float, blocks: tup
             if "uv" in parts:
                 H[k, "uv"][s] = (-0.5j * odd_sum(inv_k3, wn * nu_y, ry, Ky, chirp)) * (nu_x[s, None] * rows)
 
-    if square:  # symmetric in (m, n): half the modes
+    if square:
         half = {("kernel", b): t / G[0].real
-                for b, t in square_sums(nu_x, wx, rx, Kx, parts, chunk).items()}
+                for b, t in square_sums(nu_x, wx, rx, Kx, parts).items()}
     else:
         in_batches(m.size, work, chunk)
         half = {key: over_m_mirrored(H.pop(key)[:, Ky - 1 :], rx, Kx, chirp, _PARITY[key[1]]) for key in list(H)}
