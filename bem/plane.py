@@ -345,7 +345,7 @@ def edges_along(x: np.ndarray, spacing: float, force: np.ndarray,
     return edge(idx[0], -1), edge(idx[-1], 1)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class LineContact(NormalContact):
     """Frictionless line contact per unit length (plane strain): a :class:`NormalContact`
     on a :class:`LineGrid`, fields of shape ``(1, K)``.

@@ -85,7 +85,7 @@ class ContactFigures:
         return pressure_centroid_x(self.grid, self.force)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class NormalContact(ContactFigures):
     """Result of a frictionless contact solve; fields are ``(K_y, K_x)`` arrays.
 

@@ -78,7 +78,7 @@ def end_weights(truncation: int, spacing: float, period: float) -> np.ndarray:
     return w
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False, repr=False)
 class _Modes:
     """The truncated Fourier modes ``0 <= m <= N_tx``, ``0 <= n <= N_ty`` of a grid: wave
     numbers ``nu_x, nu_y`` (rad/m), moduli ``G`` (Pa, complex) at ``omega_m = -nu_x V``,

@@ -50,7 +50,7 @@ def tight_solve(misfit: float, changes: bool, careful: bool, dense: bool,
     return misfit <= o.loose_until and (not changes or misfit <= o.settled or careful or dense)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False, repr=False)
 class ActiveSetResult:
     """The converged state of :func:`run_active_set` (flat full-grid arrays).
 

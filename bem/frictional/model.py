@@ -192,7 +192,7 @@ class FrictionRecord:
         return max(self.gap_residual, self.stick_residual, self.coulomb_residual)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class FrictionalContact(ContactFigures):
     """Result of a frictional rolling/sliding solve; fields are ``(K_y, K_x)`` arrays.
 

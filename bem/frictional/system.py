@@ -30,7 +30,7 @@ from .operators import RollingOperators
 __all__ = ["SetState", "RollingSetup", "SetSystem", "force_rows"]
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False, repr=False)
 class SetState:
     """Contact, stick and slip sets on the full grid (flat arrays).
 
@@ -55,7 +55,7 @@ class SetState:
         return self.contact & ~self.stick
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False, repr=False)
 class RollingSetup:
     """What stays fixed while the sets change (flat arrays on the grid).
 

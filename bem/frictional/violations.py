@@ -15,7 +15,7 @@ from .system import RollingSetup
 __all__ = ["Violations", "measure", "next_sets", "next_directions"]
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False, repr=False)
 class Violations:
     """What the solution of one set state violates (flat full-grid arrays).
 
