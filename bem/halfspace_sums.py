@@ -252,7 +252,8 @@ def square_sums(nu: np.ndarray, weight: np.ndarray, ratio: float, count: int, pa
     N = nu.size
     nu2 = nu * nu
     alpha, c = inverse_power_gaussians(nu[1], math.sqrt(2.0) * nu[-1])
-    E = np.exp(-np.outer(alpha, nu2))
+    E = np.multiply.outer(-alpha, nu2)
+    np.exp(E, out=E)
     C = weight[:, None] * trig_table(ratio, N, count, False)
     A = E @ C
     out = {}
@@ -261,10 +262,10 @@ def square_sums(nu: np.ndarray, weight: np.ndarray, ratio: float, count: int, pa
         if "ww" in parts:
             out["ww"] = _unfold(0.5 * F, 1.0)
     if "uu" in parts:
-        X2 = ((E * nu2) @ C).T * c[3] @ A  # nu_x^2 / k^3
+        X2 = (E @ (nu2[:, None] * C)).T * c[3] @ A  # nu_x^2 / k^3
         out["uu"] = _unfold((F - 0.5 * X2).T, 1.0)
     if "uv" in parts:
-        B = (E * nu) @ (weight[:, None] * trig_table(ratio, N, count, True))
+        B = E @ ((nu * weight)[:, None] * trig_table(ratio, N, count, True))
         out["uv"] = _unfold(0.5 * (B.T * c[3]) @ B, -1.0)
     return out
 
