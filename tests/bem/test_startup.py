@@ -75,3 +75,28 @@ def test_the_help_formatter_takes_the_terminal_width_from_columns(monkeypatch):
 
     monkeypatch.setattr("os.get_terminal_size", no_terminal)
     assert _Formatter("bem")._width == 78
+
+
+def test_the_command_collects_no_garbage_while_it_loads_and_does_during_the_solve():
+    """``bem solve`` as its own process (``command``) pauses the cyclic collector while
+    numpy and the solver's modules load (their objects live to the end) and freezes them;
+    the solve, whose active-set iterations leave cycles, runs with the collector on. In
+    process, ``main`` leaves the collector alone."""
+    code = ("import gc, sys\n"
+            "import bem.cli, bem.driver\n"
+            "seen = []\n"
+            "solve = bem.driver.solve\n"
+            "def watched(*a, **k):\n"
+            "    seen.append((gc.isenabled(), gc.get_freeze_count() > 0))\n"
+            "    return solve(*a, **k)\n"
+            "bem.driver.solve = watched\n"
+            "argv = ['solve', sys.argv[1], '--quiet', '--no-error-estimate', '--set', 'grid.spacing=0.4e-3',"
+            " '--set', 'grid.truncation=750']\n"
+            "assert bem.cli.main(argv) == 0 and seen == [(True, False)], seen\n"
+            "bem.cli._pause_collection()\n"
+            "assert not gc.isenabled()\n"
+            "assert bem.cli.main(argv) == 0 and seen[1] == (True, True), seen\n"
+            "print('ok')\n")
+    env = {"PATH": "/usr/bin:/bin", "OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1"}
+    out = subprocess.run([sys.executable, "-c", code, str(CASE)], capture_output=True, text=True, env=env)
+    assert out.stdout.splitlines()[-1] == "ok", out.stderr
