@@ -13,16 +13,9 @@ import numpy as np
 
 from .threads import cores
 
-__all__ = ["CHUNK", "in_batches", "real_chunk"]
+__all__ = ["CHUNK", "in_batches"]
 
 CHUNK = 256  # rows of m per batch of complex symbols
-
-
-def real_chunk(modes: int) -> int:
-    """Rows of ``m`` per batch of the half-space's real sums over ``modes`` values of ``n``:
-    64 (their arrays stay in cache), fewer on the longest rows, whose transforms' arrays
-    (about 80 bytes a mode) then stay within the heap kept by :func:`_keep_heap`."""
-    return min(64, max(8, 400_000 // modes))
 
 
 @functools.cache

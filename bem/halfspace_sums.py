@@ -5,14 +5,15 @@ Without inertia a deep mode's compliance is ``1 / G(omega_m)`` times a real func
 with a little inertia every block is a short series in ``eps = rho V^2 nu_x^2 / (G k^2)``
 (:data:`INERTIA_SERIES`) of real arrays ``nu_x^a nu_y^b / k^p`` times factors of the row
 ``m``. So every deep-mode kernel is a sum over ``m`` of row factors times the sums over
-``n`` of a few real arrays, weighted by functions of ``n`` alone: the weights go into the
-trigonometric table (or the chirp) once, the factors of ``m`` onto the ``(rows, 2 K_y -
-1)`` partial sums, and no complex symbol of every mode is formed. The sums are the terms
-of :func:`bem.mode_sums.over_n`, reordered.
-On a square grid with one real modulus :func:`square_sums` separates the double sums
-altogether: ``1 / k`` and ``1 / k^3`` as sums of about 140 Gaussians ``exp(-alpha k^2) =
-exp(-alpha nu_x^2) exp(-alpha nu_y^2)`` (:func:`inverse_power_gaussians`), each a product of
-two sums over one direction.
+``n`` of a few real arrays, weighted by functions of ``n`` alone, and no complex symbol of
+every mode is formed. Those arrays separate: ``k^-p`` is a sum of about 170 Gaussians
+``exp(-alpha k^2) = exp(-alpha nu_x^2) exp(-alpha nu_y^2)`` to rounding
+(:func:`inverse_power_gaussians`), so the sums over ``n`` are taken once, of the
+Gaussians (:func:`series_sums`: matrix products, DCT-I / DST-I on a lattice, or chirp-z),
+and every row's are a product with its own Gaussians (:func:`gaussian_sums`): ``O(N_x Q
+K)`` for ``Q`` Gaussians and ``K`` offsets instead of ``O(N_x N_y K)``. On a square grid
+with one real modulus :func:`square_sums` separates the sums over ``m`` as well.
+(``docs/derivations.md``, section 14.)
 """
 
 from __future__ import annotations
@@ -23,8 +24,8 @@ import numpy as np
 
 from .mode_sums import cos_sums, lattice_half, over_n, sin_sums, trig_table
 
-__all__ = ["HALFSPACE_KH", "INERTIA_SERIES", "halfspace_symbols", "inverse_powers", "even_sums", "odd_sum",
-           "inverse_power_gaussians", "GAUSSIAN_STEP",
+__all__ = ["HALFSPACE_KH", "INERTIA_SERIES", "halfspace_symbols", "inverse_power_gaussians", "GAUSSIAN_STEP",
+           "gaussian_sums",
            "series_arrays", "series_factor", "series_sums", "square_sums"]
 
 #: ``k H`` beyond which a mode does not see the base: the layer's compliance is the
@@ -48,12 +49,6 @@ def halfspace_symbols(nu_x: np.ndarray, nu_y: np.ndarray) -> dict:
         inv_k = np.where(k > 0, 1.0 / k, 0.0)
     inv_k3 = inv_k * inv_k * inv_k
     return {"ww": 0.5 * inv_k, "uu": (0.5 * nx * nx + ny * ny) * inv_k3, "uv": (-0.5 * nx) * ny * inv_k3}
-
-
-def inverse_powers(nu_x: np.ndarray, nu_y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """``1 / k`` (m) and ``1 / k^3`` (m^3) on the outer grid ``nu_x[:, None], nu_y[None, :]``
-    (rad/m), ``k = |nu|``; ``0`` at ``k = 0`` (that mode is the base's, summed apart)."""
-    return _powers_of_k2(np.add.outer(nu_x * nu_x, nu_y * nu_y))
 
 
 def _powers_of_k2(k2: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -122,14 +117,14 @@ def series_factor(coefs, G: np.ndarray, rho_V2: float) -> np.ndarray:
 
 def series_sums(arrays: np.ndarray, keys, weights, nu_y: np.ndarray, ratio: float, count: int,
                 chirp: bool) -> dict:
-    """``sum_{|n| <= N_t} A(m, |n|) w(n) exp(2 pi i ratio n dy)``, ``0 <= dy < count``, of
-    every :func:`series_arrays` ``A = arrays[i]`` of the ``keys[i] = (a, p, odd)`` and every
-    ``w`` of ``weights`` (functions of ``n``, 1/m), with the odd extension ``sign(n) Y`` for
-    ``odd`` (``Y = nu_y``, rad/m): real ``(rows, count)`` tables (``i`` times them for the odd
-    ones; even, or odd, in ``dy``) under ``(a, p, odd, index of w)``. By matrix products (the
-    arrays of one parity stacked, the weights side by side in the table), DCT-I / DST-I on a
-    lattice, or chirp-z, two arrays of one parity as one complex sum (they are of one
-    scale, ``1 / k``)."""
+    """``sum_{|n| <= N_t} A(r, |n|) w(n) exp(2 pi i ratio n dy)``, ``0 <= dy < count``, of
+    every real array ``A = arrays[i]`` (rows ``r``, columns ``n >= 0``; the Gaussians of
+    :func:`gaussian_sums`) of the ``keys[i] = (a, p, odd)`` and every ``w`` of ``weights``
+    (functions of ``n``, 1/m), with the odd extension ``sign(n) Y`` for ``odd`` (``Y =
+    nu_y``, rad/m): real ``(rows, count)`` tables (``i`` times them for the odd ones; even,
+    or odd, in ``dy``) under ``(a, p, odd, index of w)``. By matrix products (the arrays of
+    one parity stacked, the weights side by side in the table), DCT-I / DST-I on a lattice,
+    or chirp-z, two arrays of one parity as one complex sum (they must be of one scale)."""
     out = {}
     _, rows, N = arrays.shape
     Q = lattice_half(ratio, N, count) if chirp else None
@@ -165,36 +160,51 @@ def series_sums(arrays: np.ndarray, keys, weights, nu_y: np.ndarray, ratio: floa
     return out
 
 
-def even_sums(A: np.ndarray, B: np.ndarray | None, weight_n: np.ndarray, ratio: float, count: int,
-              chirp: bool) -> tuple[np.ndarray, np.ndarray | None]:
-    """``sum_{|n| <= N_t} A(m, |n|) w(n) exp(2 pi i ratio n dy)`` for ``|dy| < count`` and the
-    same of ``B``: real ``(rows, 2 count - 1)`` each (``None`` for no ``B``). ``A, B`` real,
-    ``w`` the ``weight_n``. By chirp-z the two go as the real and imaginary parts of one
-    complex sum: each is even in ``n``, so each one's sum is real (its rounding is then
-    that of the larger: ``A`` and ``B`` must be of one scale); on a lattice
-    (:func:`bem.mode_sums.lattice_half`) each by a DCT-I instead."""
-    Q = lattice_half(ratio, A.shape[1], count) if chirp else None
-    if Q:
-        def one(X):
-            return None if X is None else _mirror(cos_sums(X, Q, count, weight=weight_n), 1.0)
-        return one(A), one(B)
-    if chirp and B is not None:
-        AB = np.empty(A.shape, dtype=complex)
-        AB.real, AB.imag = A, B
-        h = over_n(AB, False, ratio, count, True, weight_n)
-        return h.real, h.imag
-    sa = over_n(A, False, ratio, count, chirp, weight_n).real
-    return sa, (None if B is None else over_n(B, False, ratio, count, chirp, weight_n).real)
+def gaussian_sums(nu_x: np.ndarray, nu_y: np.ndarray, weights, ratio: float, count: int, chirp: bool, keys):
+    """The sums of :func:`series_sums` for the rows of any modes: a function of a slice of
+    the rows ``nu_x`` (rad/m, ``m >= 0``) that returns, for every ``key = (a, p, odd)`` and
+    every ``w`` of ``weights`` (functions of ``n``, 1/m), ``sum_{|n| <= N_t} X^a / k^p w(n)
+    exp(2 pi i ratio n dy)`` (``sign(n) Y`` more for ``odd``; 0 at ``k = 0``), ``0 <= dy <
+    count``: real ``(rows, count)`` under ``(a, p, odd, index of w)``, ``i`` times them for
+    the odd ones.
 
+    With ``k^-p = sum_q c_q exp(-alpha_q X^2) exp(-alpha_q Y^2)``
+    (:func:`inverse_power_gaussians`) a row's sum is ``X^a sum_q c_q exp(-alpha_q X^2)
+    T_q(dy)``, ``T_q`` the sums over ``n`` of ``exp(-alpha_q Y^2)`` (:func:`series_sums`, once
+    for all rows): a product ``(rows x Q) (Q x count)`` for every power, parity and weight,
+    ``O(N_x Q count)`` instead of ``O(N_x N_y count)``, and no array over every mode. The
+    Gaussians' value at ``k = 0`` (``sum c_q``, for ``a = 0``) leaves the row ``m = 0``."""
+    keys = list(keys)
+    nw = len(weights)
+    alpha, c = inverse_power_gaussians(min(nu_x[1], nu_y[1]), math.hypot(nu_x[-1], nu_y[-1]),
+                                       sorted({p for _, p, _ in keys}))
+    E = np.multiply.outer(-alpha, nu_y * nu_y)
+    np.exp(E, out=E)
+    parities = sorted({odd for *_, odd in keys})
+    T = series_sums(np.stack([E] * len(parities)), [(0, 0, odd) for odd in parities], weights, nu_y, ratio, count,
+                    chirp)
+    combos = sorted({(p, odd) for _, p, odd in keys})
+    place = {combo: j * count for j, combo in enumerate(combos)}
+    # a product for each weight: a kernel's sums do not depend on whether power tables are
+    # asked as well (the same numbers, bit for bit)
+    stacks = [np.concatenate([c[p][:, None] * T[0, 0, odd, ik] for p, odd in combos], axis=1) for ik in range(nw)]
 
-def odd_sum(A: np.ndarray, weight_n: np.ndarray, ratio: float, count: int, chirp: bool) -> np.ndarray:
-    """``sum_{|n| <= N_t} sign(n) A(m, |n|) w(n) exp(2 pi i ratio n dy)`` (``A`` real, odd
-    extension in ``n``), ``|dy| < count``: ``i`` times the real array returned,
-    ``(rows, 2 count - 1)``."""
-    Q = lattice_half(ratio, A.shape[1], count) if chirp else None
-    if Q:
-        return _mirror(sin_sums(A * weight_n, Q, count), -1.0)
-    return over_n(A, True, ratio, count, chirp, weight_n).imag
+    def rows(s: slice) -> dict:
+        X = nu_x[s]
+        G = np.multiply.outer(X * X, -alpha)
+        np.exp(G, out=G)
+        H = [G @ stack for stack in stacks]
+        out = {}
+        for a, p, odd in keys:
+            for ik in range(nw):
+                j = place[p, odd]
+                h = X[:, None] ** a * H[ik][:, j : j + count] if a else H[ik][:, j : j + count].copy()
+                if not a and not odd and X.size and X[0] == 0:
+                    h[0] -= c[p].sum() * weights[ik][0]
+                out[a, p, odd, ik] = h
+        return out
+
+    return rows
 
 
 def _mirror(h: np.ndarray, sign: float) -> np.ndarray:
@@ -204,9 +214,9 @@ def _mirror(h: np.ndarray, sign: float) -> np.ndarray:
 
 
 def inverse_power_gaussians(k_min: float, k_max: float, powers=(1, 3)) -> tuple[np.ndarray, dict]:
-    """Exponents ``alpha`` (m^2), shared, and for each ``p`` of ``powers`` (odd) weights
-    ``c[p]`` (m^p) with ``k^-p = sum_q c[p]_q exp(-alpha_q k^2)`` to 2e-15 relative for
-    ``k_min <= k <= k_max`` (1/m): about 140 terms at ``k_max / k_min = 2000``, 170 at 10^5.
+    """Exponents ``alpha`` (m^2), shared, and for each ``p > 0`` of ``powers`` weights ``c[p]``
+    (m^p) with ``k^-p = sum_q c[p]_q exp(-alpha_q k^2)`` to 2e-15 relative for ``k_min <= k <=
+    k_max`` (1/m), ``p`` up to 8: about 170 terms at ``k_max / k_min = 2000``, 210 at 10^5.
 
     From ``k^-p = 2 / Gamma(p / 2) int exp(-k^2 e^(2 s) + p s) ds`` over the real line (``t =
     e^s`` in ``int_0^inf t^(p - 1) exp(-k^2 t^2) dt = Gamma(p / 2) / (2 k^p)``) by the
@@ -221,18 +231,22 @@ def inverse_power_gaussians(k_min: float, k_max: float, powers=(1, 3)) -> tuple[
     bottom = min(math.log(1e-17) / p for p in powers) - math.log(k_max / k_min)
     s = top - GAUSSIAN_STEP * np.arange(int((top - bottom) / GAUSSIAN_STEP) + 1)
     alpha = np.exp(2 * s) / k_min**2
-    flat = alpha * k_max**2 < 1e-6
     weights = {p: (2 / math.gamma(p / 2) * GAUSSIAN_STEP / k_min**p) * np.exp(p * s) for p in powers}
+    flat = alpha * k_max**2 < 1e-6
+    if not flat.any():
+        return alpha, weights
+    kept = alpha.size - flat.sum()
     tails = [(w[flat].sum(), (w[flat] * alpha[flat]).sum()) for w in weights.values()]
     c = {p: np.concatenate([w[~flat], np.zeros(len(powers))]) for p, w in weights.items()}
     for i, p in enumerate(powers):
-        c[p][flat.size - flat.sum() + i] = tails[i][0]
+        c[p][kept + i] = tails[i][0]
     return np.concatenate([alpha[~flat], [t / w for w, t in tails]]), c
 
 
-#: the trapezoidal step of :func:`inverse_power_gaussians` in ``s = log t`` (2e-15 at 0.12,
-#: 6e-15 for ``p = 3`` at 0.13, 1.5e-14 for ``p = 1`` at 0.15)
-GAUSSIAN_STEP = 0.12
+#: the trapezoidal step of :func:`inverse_power_gaussians` in ``s = log t``: at 0.1 the error
+#: is rounding's for every power to 8 (0.6-1.8e-15); at 0.12 it is for p <= 4 (5e-15 at p =
+#: 5, 1.1e-13 at p = 8), at 0.15 1.5e-14 (p = 1) to 2.5e-12 (p = 4)
+GAUSSIAN_STEP = 0.1
 
 
 def square_sums(nu: np.ndarray, weight: np.ndarray, ratio: float, count: int, parts) -> dict:

@@ -18,9 +18,11 @@ symbols on the quarter ``m, n >= 0`` (reality ``g(-m, -n) = conj g(m, n)`` and p
 ``a / L`` at a cost of ``O(N_t^2 log N_t)``, or by DCT-I / DST-I when ``L = 2 Q a`` with
 ``Q >= N_t``. The deep modes of a layer without inertia, or with a little (``rho V^2 /
 |G| <= 1e-6``), need no complex symbol: their sums are of real arrays, ``1 / k`` and ``1 /
-k^3`` without inertia (on a square grid with one modulus, as sums of separable Gaussians),
-``nu_x^a nu_y^b / k^p`` with it (:mod:`bem.halfspace_sums`). ``vu = uv`` is computed once. :func:`influence_kernels_direct` is the paper's route, summing every term for two
-source nodes, kept as the slow reference.
+k^3`` without inertia, ``nu_x^a nu_y^b / k^p`` with it, and those separate into sums of
+Gaussians in ``nu_x`` and ``nu_y`` (:mod:`bem.halfspace_sums`): ``O(N_t Q K)`` for ``Q``
+(about 170) Gaussians and ``K`` nodes a side. ``vu = uv`` is computed once.
+:func:`influence_kernels_direct` is the paper's route, summing every term for two source
+nodes, kept as the slow reference.
 
 A kernel table ``K`` has shape ``(2 K_y - 1, 2 K_x - 1)``; ``K[dy + K_y - 1, dx + K_x - 1]``
 is the displacement (m) at offset ``(dx a_x, dy a_y)`` from a unit force (N), with the
@@ -34,10 +36,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .batches import CHUNK, in_batches, real_chunk
+from .batches import CHUNK, in_batches
 from .grid import Grid
-from .halfspace_sums import (HALFSPACE_KH, INERTIA_SERIES, even_sums, halfspace_symbols, inverse_powers, odd_sum,
-                             series_arrays, series_factor, series_sums, square_sums)
+from .halfspace_sums import (HALFSPACE_KH, INERTIA_SERIES, gaussian_sums, halfspace_symbols, series_arrays,
+                             series_factor, square_sums)
 from .layer import DEEP_KH, SERIES_EPS, Layer, compliance_blocks, normal_compliance_outer, surface_compliance
 from .mode_sums import chirp_sum, over_m_mirrored, over_n
 
@@ -191,10 +193,10 @@ def _kernels_halfspace_split(grid: Grid, layer: Layer, speed: float, blocks: tup
 
     Without inertia a half-space mode's symbol is ``sinc_x sinc_y / (L_x L_y G(omega_m))``
     times a real function of ``nu`` (:func:`halfspace_symbols`) made of ``1 / k`` and ``1 /
-    k^3``: the sums over ``n`` run on those real arrays (:mod:`bem.halfspace_sums`; real
-    matrix products, DCT-I / DST-I on a lattice, or chirp-z above :data:`_MATMUL_NODES`
-    nodes) before the factors of the row (``1 / G``, ``nu_x``); on a square grid with one real
-    ``G`` as sums of separable Gaussians (:func:`bem.halfspace_sums.square_sums`). The
+    k^3``: their sums over ``n`` are those of Gaussians times each row's own
+    (:func:`bem.halfspace_sums.gaussian_sums`), before the factors of the row (``1 / G``,
+    ``nu_x``); on a square grid with one real ``G`` the sums over ``m`` too
+    (:func:`bem.halfspace_sums.square_sums`). The
     normal-tangential blocks have no half-space part, ``vu = uv`` and ``vv = 3 ww - uu``. The modes near the origin take the
     exact symbols (:func:`bem.layer.compliance_blocks`) less the half-space ones. The same
     truncated sum as :func:`_kernels_streamed`, to rounding. With ``power`` the
@@ -206,38 +208,39 @@ def _kernels_halfspace_split(grid: Grid, layer: Layer, speed: float, blocks: tup
     md = _modes(grid, layer, speed)
     m, n, nu_x, nu_y, G, wx, wy, sy, rx, ry = md.m, md.n, md.nu_x, md.nu_y, md.G, md.wx, md.wy, md.sy, md.rx, md.ry
     inv_G = 1.0 / G
-    chunk = real_chunk(n.size)
     need = {"ww": ("ww", "vv"), "uu": ("uu", "vv"), "uv": ("uv", "vu")}
     parts = [b for b in ("ww", "uu", "uv") if any(t in blocks for t in need[b])]
     kinds = ("kernel", "power") if power else ("kernel",)
     square = (not chirp and not power and Kx == Ky and np.array_equal(nu_x, nu_y) and np.array_equal(wx, wy)
               and rx == ry and np.all(G == G[0]) and G[0].imag == 0)
-    H = {} if square else {(k, b): np.empty((m.size, 2 * Ky - 1), dtype=complex) for k in kinds for b in parts}
+    H = {} if square else {(k, b): np.empty((m.size, Ky), dtype=complex) for k in kinds for b in parts}
+    # ww = 1 / (2 k), uu = (nu_x^2 / 2 + nu_y^2) / k^3 = 1 / k - nu_x^2 / (2 k^3),
+    # uv = -nu_x nu_y / (2 k^3) (halfspace_symbols): the sums over n of 1 / k, nu_x^2 / k^3
+    # and sign(n) nu_y / k^3, by Gaussians
+    keys = [key for key, part in (((0, 1, False), "ww" in parts or "uu" in parts), ((2, 3, False), "uu" in parts),
+                                  ((0, 3, True), "uv" in parts)) if part]
+    sums = None if square or not keys else gaussian_sums(nu_x, nu_y, [wy * sy if k == "power" else wy for k in kinds], ry, Ky,
+                                             chirp, keys)
 
     def work(start: int) -> None:
-        # ww = 1 / (2 k), uu = (nu_x^2 / 2 + nu_y^2) / k^3 = 1 / k - nu_x^2 / (2 k^3),
-        # uv = -nu_x nu_y / (2 k^3) (halfspace_symbols): sums over n of 1 / k and 1 / k^3
-        s = slice(start, min(start + chunk, m.size))
-        inv_k, inv_k3 = inverse_powers(nu_x[s], nu_y)
-        # nu_x^2 / (2 k^3) <= 1 / (2 k): of the scale of 1 / k (their sums may share a transform)
-        x2_inv_k3 = (0.5 * nu_x[s, None] ** 2) * inv_k3 if "uu" in parts else None
-        for k in kinds:
-            wn = wy * sy if k == "power" else wy
+        s = slice(start, min(start + CHUNK, m.size))
+        got = sums(s)
+        for ik, k in enumerate(kinds):
             rows = (wx[s] * inv_G[s])[:, None] * (_power_rows(g, md, s) if k == "power" else 1.0)
-            c1, c3 = even_sums(inv_k, x2_inv_k3, wn, ry, Ky, chirp)
             if "ww" in parts:
-                H[k, "ww"][s] = (0.5 * c1) * rows
+                H[k, "ww"][s] = (0.5 * got[0, 1, False, ik]) * rows
             if "uu" in parts:
-                H[k, "uu"][s] = (c1 - c3) * rows
+                H[k, "uu"][s] = (got[0, 1, False, ik] - 0.5 * got[2, 3, False, ik]) * rows
             if "uv" in parts:
-                H[k, "uv"][s] = (-0.5j * odd_sum(inv_k3, wn * nu_y, ry, Ky, chirp)) * (nu_x[s, None] * rows)
+                H[k, "uv"][s] = (-0.5j * got[0, 3, True, ik]) * (nu_x[s, None] * rows)
 
     if square:
         half = {("kernel", b): t / G[0].real
                 for b, t in square_sums(nu_x, wx, rx, Kx, parts).items()}
     else:
-        in_batches(m.size, work, chunk)
-        half = {key: over_m_mirrored(H.pop(key)[:, Ky - 1 :], rx, Kx, chirp, _PARITY[key[1]]) for key in list(H)}
+        if keys:
+            in_batches(m.size, work)
+        half = {key: over_m_mirrored(H.pop(key), rx, Kx, chirp, _PARITY[key[1]]) for key in list(H)}
     for k in kinds:
         if "vv" in blocks:
             half[k, "vv"] = 3 * half[k, "ww"] - half[k, "uu"]
@@ -282,7 +285,8 @@ def _kernels_series(grid: Grid, layer: Layer, speed: float, blocks: tuple, power
     """The kernels with a little inertia (:func:`_series_holds`): a deep mode's symbol is a
     sum of real arrays ``nu_x^a nu_y^b / k^p`` times factors of the row
     (:data:`bem.halfspace_sums.INERTIA_SERIES`), summed over ``n`` once an array for all the
-    blocks (kernels' and power tables' weights in one product) before the factors of the row;
+    blocks (kernels' and power tables' weights side by side), as sums of Gaussians
+    (:func:`bem.halfspace_sums.gaussian_sums`), before the factors of the row;
     the modes ``k H <= 50`` (a box of rows and columns) add their exact less series symbols.
     The same truncated sum as :func:`_kernels_streamed`, to rounding and the series' next
     terms (``3/8 eps^2`` of a block of order one, ``1.5 eps^3`` of a normal-tangential one).
@@ -299,28 +303,27 @@ def _kernels_series(grid: Grid, layer: Layer, speed: float, blocks: tuple, power
     keys = sorted({t[:3] for ts in terms.values() for t in ts}, key=lambda t: (t[2], t))  # even, then odd
     column = {key: i for i, key in enumerate(keys)}
     factor = {(b, i): series_factor(t[3], md.G, rho_V2) for b, ts in terms.items() for i, t in enumerate(ts)}
-    chunk = real_chunk(md.n.size)
     far = {(k, b): np.empty((md.m.size, Ky), dtype=complex) for k in kinds for b in blocks}  # dy >= 0
     # the modes k H <= DEEP_KH (a row and a column more) add their exact less series symbols
     Mx = min(md.m.size, int(DEEP_KH * g.period_x / (2 * np.pi * H)) + 2)
     My = min(md.n.size, int(DEEP_KH * g.period_y / (2 * np.pi * H)) + 2)
+    sums_of = gaussian_sums(md.nu_x, md.nu_y, weights, md.ry, Ky, chirp, keys)  # the series' sums over n
 
     def rows(k: str, s: slice) -> np.ndarray:
         return md.wx[s, None] * (_power_rows(g, md, s) if k == "power" else 1.0)
 
     def work(start: int) -> None:
-        s = slice(start, min(start + chunk, md.m.size))
-        arrays = series_arrays(md.nu_x[s], md.nu_y, keys)
-        sums = series_sums(arrays, keys, weights, md.nu_y, md.ry, Ky, chirp)
+        s = slice(start, min(start + CHUNK, md.m.size))
+        sums = sums_of(s)
         deep = {(src, ik): sum(factor[src, i][s, None] * (1j if odd else 1.0) * sums[a, p, odd, ik]
                                for i, (a, p, odd, _) in enumerate(ts))
-                for src, ts in terms.items() for ik in range(len(kinds))}  # the series' sums over n
+                for src, ts in terms.items() for ik in range(len(kinds))}
         near = start < Mx
         if near:  # the box's exact and series symbols
-            t = slice(start, min(start + chunk, Mx))
+            t = slice(start, min(start + CHUNK, Mx))
             exact = compliance_blocks(md.nu_x[t, None], md.nu_y[None, :My], md.G[t, None], rho_V2, H, blocks)
-            series = {src: sum(factor[src, i][t, None] * (arrays[column[a, p, odd]][: t.stop - start, :My]
-                                                           * (md.nu_y[:My] if odd else 1.0))
+            arrays = series_arrays(md.nu_x[t], md.nu_y[:My], keys)
+            series = {src: sum(factor[src, i][t, None] * (arrays[column[a, p, odd]] * (md.nu_y[:My] if odd else 1.0))
                                for i, (a, p, odd, _) in enumerate(ts))
                       for src, ts in terms.items()}
         for b, (src, sign) in source.items():
@@ -331,7 +334,7 @@ def _kernels_series(grid: Grid, layer: Layer, speed: float, blocks: tuple, power
                     far[k, b][t] += over_n(corr, b in _ODD_IN_NY, md.ry, Ky, False, weights[ik][:My])[:, Ky - 1 :]
                 far[k, b][s] *= rows(k, s)
 
-    in_batches(md.m.size, work, chunk)
+    in_batches(md.m.size, work)
     out = {k: {} for k in ("kernel", "power")}
     for k, b in list(far):
         out[k][b] = over_m_mirrored(far.pop((k, b)), md.rx, Kx, chirp, _PARITY[b])
