@@ -114,8 +114,9 @@ class LinePreconditioner:
     applications run in ``dtype`` (single by default: the flexible GMRES of
     :func:`bem.linear.fgmres` keeps every preconditioned vector, so rounding there costs
     no accuracy), the columns too, the Woodbury terms are inverted in double. With
-    ``threads`` an application whose operands take ``options.thread_from`` bytes or more,
-    and the build's columns and inversions, run on two threads. ``options``
+    ``threads`` an application whose operands take ``options.thread_from`` bytes or more
+    runs on two threads; the build runs on one (on two threads, solves on two cores took
+    1.00-1.05 times as long: ``docs/frictional-solver.md``, "Threads"). ``options``
     (:class:`~bem.frictional.options.SolverOptions`, default ``SolverOptions()``) also sets
     the row filter applied after the lines (``filter_power``, 0: the lines alone;
     ``filter_long``, ``filter_waves``) and the thresholds ``chunk``, ``compose_upto``,
@@ -301,7 +302,6 @@ class LinePreconditioner:
         if todo.size:
             # the missing columns, one row of positions per run length (padded), lengths with
             # about as many missing columns together
-            two = self.threads and cores() > 1
             n_of, pos_of = np.divmod(uniq[todo], M)
             lengths, per = np.unique(n_of, return_counts=True)
             order = np.argsort(per, kind="stable")[::-1]
@@ -316,7 +316,7 @@ class LinePreconditioner:
                 for r, g in enumerate(part):
                     pos[r, :per[g]] = pos_of[start[g]:start[g] + per[g]]
                     dest[r, :per[g]] = todo[start[g]:start[g] + per[g]]
-                cols = [inv.columns(1 + b, lengths[part], pos, self.dtype, two) for b in (0, 1)]
+                cols = [inv.columns(1 + b, lengths[part], pos, self.dtype) for b in (0, 1)]
                 filled = dest >= 0
                 for b in (0, 1):
                     columns[b, dest[filled]] = cols[b][filled]
@@ -387,17 +387,7 @@ class LinePreconditioner:
                 bot = np.concatenate([(e2[:, :, None] * eye - e1[:, :, None] * HD) / diag, -e1[:, :, None] * Hi], 2)
                 g["H"] = np.concatenate([Gi[:, 0] @ top, Gi[:, 1] @ bot], 1)
 
-        # on two threads, about equal flops each
-        cost = [g["Y"].shape[1] * g["Y"].shape[2] ** 3 for g in groups]
-        halves, load = ([], []), [0, 0]
-        for i in np.argsort(cost)[::-1]:
-            k = int(load[1] < load[0])
-            halves[k].append(groups[i])
-            load[k] += cost[i]
-        job = toeplitz.second_thread().submit(invert, halves[1]) if self.threads and cores() > 1 else None
-        invert(halves[0] if job is not None else groups)
-        if job is not None:
-            job.result()
+        invert(groups)
         self._blocks = {key: Gi for g in groups for key, Gi in zip(g["keys"], g["Gi"])}
         dt = self.dtype
         return [(g["members"], g["at"], g["where"], g["Gi"].astype(dt), g["H"].astype(dt), g["e1"].astype(dt),

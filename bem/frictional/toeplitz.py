@@ -216,7 +216,7 @@ class RowInverses:
         first = self._transform(operand[:, :half], v[:half])
         return np.concatenate([first, job.result()])
 
-    def columns(self, b: int, lens: np.ndarray, pos: np.ndarray, dtype, threads: bool = False) -> np.ndarray:
+    def columns(self, b: int, lens: np.ndarray, pos: np.ndarray, dtype) -> np.ndarray:
         """The columns ``pos`` ``(L, P)`` of the inverses of block ``b`` for runs of ``lens``
         (``L``) nodes, as rows ``(L, P, M)`` in real ``dtype`` (0 beyond the run, and for a
         place at or beyond its end)."""
@@ -229,13 +229,7 @@ class RowInverses:
                 out[i, inside, :n] = GT[pos[i][inside]]
             return out
         spec = self.operand(b, lens, dtype)[:, :, None]
-        unit = self.units[pos].astype(spec.dtype)
-        if not threads or len(lens) < 2:
-            return self._transform(spec, None, unit)
-        half = len(lens) // 2
-        job = second_thread().submit(self._transform, spec[:, half:], None, unit[half:])
-        first = self._transform(spec[:, :half], None, unit[:half])
-        return np.concatenate([first, job.result()])
+        return self._transform(spec, None, self.units[pos].astype(spec.dtype))
 
     def _transform(self, spectra, v, unit=None):
         """Gohberg-Semencul by transforms (``unit``: the spectra of ``v``, then not read)."""

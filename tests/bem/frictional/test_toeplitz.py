@@ -120,10 +120,10 @@ def test_row_inverses_solve_the_runs_toeplitz_systems(kernels, threads, dense, M
             # both blocks of the tangential rows in one operand: each block's rows as alone
             two = inv.solve(inv.operand((b, 2), lens, np.float64), np.concatenate([v, v]), threads=threads)
             assert np.abs(two[:lens.size] - got).max() < 1e-13 * np.abs(got).max()
-        cols = inv.columns(b, lens, pos, np.float64, threads=threads)
+        cols = inv.columns(b, lens, pos, np.float64)
         np.testing.assert_array_equal(got, inv.solve(inv.operand(b, lens, np.float64), v))
         assert cols.shape == (lens.size, 2, M)
-        assert inv.columns(b, lens, pos, np.float32, threads=threads).dtype == np.float32
+        assert inv.columns(b, lens, pos, np.float32).dtype == np.float32
         single = inv.solve(inv.operand(b, lens, np.float32), v.astype(np.float32))
         assert single.dtype == np.float32
         for row, n in enumerate(lens):
