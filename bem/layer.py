@@ -282,13 +282,50 @@ def _wave_frame_halfspace(k, q, d):
 DEEP_KH = 50.0
 
 
+def _static_parts(k, H):
+    """``G`` times the wave frame's compliances without inertia (``q = k``), real: ``c_zz``,
+    ``i c_zL/k = -i c_Lz/k``, ``c_LL``, ``c_TT`` (m, m^2, m, m) of ``k`` (1/m), from
+    ``kH = 0`` to the half-space. With ``y = 2 k H`` and ``D = cosh y + y^2 / 2 + 1``:
+    ``c_zz = H (sinh y - y) / (y D)``, ``c_LL = H (sinh y + y) / (y D)``, ``c_zL/k = -i H^2 /
+    D``, ``c_TT = tanh(kH) / k`` (``docs/derivations.md`` section 2, "No inertia"), written
+    with ``E = exp(-y)``: ``D = e^y (1 + E^2 + (y^2 + 2) E) / 2``; ``(sinh y - y) / y`` by its
+    series below ``y = 1``, where the difference would cancel."""
+    shape = np.shape(k)
+    y = 2.0 * H * np.ravel(k)
+    E = np.exp(-y)
+    den = 1.0 + E * (E + y * y + 2.0)  # 2 D e^-y
+    with np.errstate(divide="ignore", invalid="ignore"):  # k = 0: the limits, below
+        zz = H * (1.0 - E * (E + 2.0 * y)) / (y * den)
+        ll = H * (2.0 * y * E - np.expm1(-2.0 * y)) / (y * den)
+        tt = -H * np.expm1(-y) / ((1.0 + E) * (0.5 * y))
+    small = y < 1.0
+    if small.any():
+        ys = y[small]
+        y2 = ys * ys
+        term = y2 / 6.0  # (sinh y - y) / y = sum_{j >= 1} y^(2j) / (2j + 1)!
+        acc = term.copy()
+        for j in range(2, 13):
+            term = term * y2 / ((2 * j) * (2 * j + 1))
+            acc += term
+        zz[small] = H * acc / (np.cosh(ys) + 0.5 * y2 + 1.0)
+        zero = y == 0
+        ll[zero] = tt[zero] = H
+    return tuple(a.reshape(shape) for a in (zz, 2.0 * H * H * E / den, ll, tt))
+
+
 def _mode_parts(nu_x, nu_y, G, rho_V2, H):
     """Compliances in the wave frame: ``k``, ``c_zz``, ``c_zL/k``, ``c_Lz/k``, ``c_LL``,
-    ``c_TT`` (m/Pa, or m^2/Pa for the ``/k`` ones)."""
+    ``c_TT`` (m/Pa, or m^2/Pa for the ``/k`` ones). Without inertia (``rho_V2 = 0``) each is
+    a real function of ``k`` over ``G`` (:func:`_static_parts`)."""
     nu_x, nu_y, G = np.broadcast_arrays(
         np.asarray(nu_x, float), np.asarray(nu_y, float), np.asarray(G, complex)
     )
     k = np.hypot(nu_x, nu_y)
+    if rho_V2 == 0:
+        zz, zl, ll, tt = _static_parts(k, H)
+        inv_G = 1.0 / G
+        coupling = zl * inv_G
+        return k, zz * inv_G, -1j * coupling, 1j * coupling, ll * inv_G, tt * inv_G
     d = rho_V2 * nu_x**2 / G  # k^2 - q^2
     q = np.sqrt(k * k - d)  # principal root, Re q >= 0
     half = np.minimum(k, q.real) * H > DEEP_KH

@@ -222,3 +222,26 @@ def test_layer_inertia_and_validation():
     for bad in (object(), 3e6, type("NoCall", (), {"modulus": 3e6})()):
         with pytest.raises(TypeError, match=r"^material must have a modulus\(omega\) method, got "):
             Layer(H, bad)
+
+
+@pytest.mark.parametrize("H", [1e-4, 5e-3, 0.2])
+def test_without_inertia_the_closed_form_is_the_general_route(H):
+    """Without inertia (q = k) the wave frame's compliances are real functions of k H over
+    G (bem.layer._static_parts): against the general route (divided differences and
+    decaying exponentials, taken with rho V^2 = 1e-300) from k H = 1e-6 to 1e4, to 4e-15
+    relative for c_zz, c_LL, c_TT (measured 1.7-1.9e-15, 0.9-1.3e-15, 0.6e-15), the coupling
+    within 1e-14 of c_LL / k (measured 0.6-1.9e-15; exponentially small past k H = 20,
+    where the general route keeps only its rounding); at k = 0 the limits c_zz = 0, c_LL =
+    c_TT = H / G, c_zL / k = -c_Lz / k = -i H^2 / (2 G)."""
+    from bem.layer import _mode_parts
+
+    k = np.concatenate([[0.0], np.geomspace(1e-6, 1e4, 3001) / H])
+    G = np.full(k.size, 3e6 + 1e5j)
+    got = _mode_parts(k, 0 * k, G, 0.0, H)
+    ref = _mode_parts(k, 0 * k, G, 1e-300, H)
+    for name, i in (("c_zz", 1), ("c_LL", 4), ("c_TT", 5)):
+        assert np.all(np.abs(got[i] - ref[i]) <= 4e-15 * np.abs(ref[i])), name
+    for i in (2, 3):
+        assert np.all(np.abs(got[i] - ref[i]) * k <= 1e-14 * np.abs(ref[4])), i
+    assert got[1][0] == 0 and got[4][0] == got[5][0] == H / G[0]
+    assert got[2][0] == -got[3][0] == pytest.approx(-0.5j * H * H / G[0], rel=1e-15)
