@@ -36,7 +36,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .batches import CHUNK, in_batches
+from .batches import CHUNK, ROWS, in_batches
 from .grid import Grid
 from .halfspace_sums import (HALFSPACE_KH, INERTIA_SERIES, gaussian_sums, halfspace_symbols, series_arrays,
                              series_factor, square_sums)
@@ -223,7 +223,7 @@ def _kernels_halfspace_split(grid: Grid, layer: Layer, speed: float, blocks: tup
                                              chirp, keys)
 
     def work(start: int) -> None:
-        s = slice(start, min(start + CHUNK, m.size))
+        s = slice(start, min(start + ROWS, m.size))
         got = sums(s)
         for ik, k in enumerate(kinds):
             rows = (wx[s] * inv_G[s])[:, None] * (_power_rows(g, md, s) if k == "power" else 1.0)
@@ -239,7 +239,7 @@ def _kernels_halfspace_split(grid: Grid, layer: Layer, speed: float, blocks: tup
                 for b, t in square_sums(nu_x, wx, rx, Kx, parts).items()}
     else:
         if keys:
-            in_batches(m.size, work)
+            in_batches(m.size, work, ROWS)
         half = {key: over_m_mirrored(H.pop(key), rx, Kx, chirp, _PARITY[key[1]]) for key in list(H)}
     for k in kinds:
         if "vv" in blocks:
@@ -254,7 +254,7 @@ def _kernels_halfspace_split(grid: Grid, layer: Layer, speed: float, blocks: tup
     near = {(k, b): np.empty((Mx, 2 * Ky - 1), dtype=complex) for k in kinds for b in blocks}
 
     def correction(start: int) -> None:
-        s = slice(start, min(start + CHUNK, Mx))
+        s = slice(start, min(start + ROWS, Mx))
         exact = compliance_blocks(nu_x[s, None], nu_y[None, :My], G[s, None], 0.0, layer.thickness, blocks)
         hs = halfspace_symbols(nu_x[s], nu_y[:My])
         hs["vv"], hs["vu"] = 3 * hs["ww"] - hs["uu"], hs["uv"]
@@ -264,7 +264,7 @@ def _kernels_halfspace_split(grid: Grid, layer: Layer, speed: float, blocks: tup
             h = over_n(corr * weight, b in _ODD_IN_NY, ry, Ky, False, sy[:My] if k == "power" else None)
             near[k, b][s] = h * _power_rows(g, md, s) if k == "power" else h
 
-    in_batches(Mx, correction)
+    in_batches(Mx, correction, ROWS)
     out = {k: {} for k in ("kernel", "power")}
     for k, b in list(near):
         K = over_m_mirrored(near.pop((k, b))[:, Ky - 1 :], rx, Kx, False, _PARITY[b])
@@ -313,14 +313,14 @@ def _kernels_series(grid: Grid, layer: Layer, speed: float, blocks: tuple, power
         return md.wx[s, None] * (_power_rows(g, md, s) if k == "power" else 1.0)
 
     def work(start: int) -> None:
-        s = slice(start, min(start + CHUNK, md.m.size))
+        s = slice(start, min(start + ROWS, md.m.size))
         sums = sums_of(s)
         deep = {(src, ik): sum(factor[src, i][s, None] * (1j if odd else 1.0) * sums[a, p, odd, ik]
                                for i, (a, p, odd, _) in enumerate(ts))
                 for src, ts in terms.items() for ik in range(len(kinds))}
         near = start < Mx
         if near:  # the box's exact and series symbols
-            t = slice(start, min(start + CHUNK, Mx))
+            t = slice(start, min(start + ROWS, Mx))
             exact = compliance_blocks(md.nu_x[t, None], md.nu_y[None, :My], md.G[t, None], rho_V2, H, blocks)
             arrays = series_arrays(md.nu_x[t], md.nu_y[:My], keys)
             series = {src: sum(factor[src, i][t, None] * (arrays[column[a, p, odd]] * (md.nu_y[:My] if odd else 1.0))
@@ -334,7 +334,7 @@ def _kernels_series(grid: Grid, layer: Layer, speed: float, blocks: tuple, power
                     far[k, b][t] += over_n(corr, b in _ODD_IN_NY, md.ry, Ky, False, weights[ik][:My])[:, Ky - 1 :]
                 far[k, b][s] *= rows(k, s)
 
-    in_batches(md.m.size, work)
+    in_batches(md.m.size, work, ROWS)
     out = {k: {} for k in ("kernel", "power")}
     for k, b in list(far):
         out[k][b] = over_m_mirrored(far.pop((k, b)), md.rx, Kx, chirp, _PARITY[b])
