@@ -191,9 +191,9 @@ def gaussian_sums(nu_x: np.ndarray, nu_y: np.ndarray, weights, ratio: float, cou
 
     def rows(s: slice) -> dict:
         X = nu_x[s]
-        G = np.multiply.outer(X * X, -alpha)
-        np.exp(G, out=G)
-        H = [G @ stack for stack in stacks]
+        R = np.multiply.outer(X * X, -alpha)  # the rows' Gaussians
+        np.exp(R, out=R)
+        H = [R @ stack for stack in stacks]
         out = {}
         for a, p, odd in keys:
             for ik in range(nw):

@@ -219,8 +219,8 @@ def _kernels_halfspace_split(grid: Grid, layer: Layer, speed: float, blocks: tup
     # and sign(n) nu_y / k^3, by Gaussians
     keys = [key for key, part in (((0, 1, False), "ww" in parts or "uu" in parts), ((2, 3, False), "uu" in parts),
                                   ((0, 3, True), "uv" in parts)) if part]
-    sums = None if square or not keys else gaussian_sums(nu_x, nu_y, [wy * sy if k == "power" else wy for k in kinds], ry, Ky,
-                                             chirp, keys)
+    weights = [wy * sy if k == "power" else wy for k in kinds]
+    sums = None if square or not keys else gaussian_sums(nu_x, nu_y, weights, ry, Ky, chirp, keys)
 
     def work(start: int) -> None:
         s = slice(start, min(start + ROWS, m.size))
