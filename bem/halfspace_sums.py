@@ -9,7 +9,7 @@ with a little inertia every block is a short series in ``eps = rho V^2 nu_x^2 / 
 every mode is formed. Those arrays separate: ``k^-p`` is a sum of about 170 Gaussians
 ``exp(-alpha k^2) = exp(-alpha nu_x^2) exp(-alpha nu_y^2)`` to rounding
 (:func:`inverse_power_gaussians`), so the sums over ``n`` are taken once, of the
-Gaussians (:func:`series_sums`: matrix products, DCT-I / DST-I on a lattice, or chirp-z),
+Gaussians (:func:`column_sums`: matrix products, DCT-I / DST-I on a lattice, or chirp-z),
 and every row's are a product with its own Gaussians (:func:`gaussian_sums`): ``O(N_x Q
 K)`` for ``Q`` Gaussians and ``K`` offsets instead of ``O(N_x N_y K)``. On a square grid
 with one real modulus :func:`square_sums` separates the sums over ``m`` as well.
@@ -26,7 +26,7 @@ from .mode_sums import cos_sums, lattice_half, over_n, sin_sums, trig_table
 
 __all__ = ["HALFSPACE_KH", "INERTIA_SERIES", "halfspace_symbols", "inverse_power_gaussians", "GAUSSIAN_STEP",
            "gaussian_sums",
-           "series_arrays", "series_factor", "series_sums", "square_sums"]
+           "series_arrays", "series_factor", "column_sums", "square_sums"]
 
 #: ``k H`` beyond which a mode does not see the base: the layer's compliance is the
 #: half-space's to ``exp(-k H) = 9e-27`` (:mod:`bem.layer` switches at 50)
@@ -115,62 +115,37 @@ def series_factor(coefs, G: np.ndarray, rho_V2: float) -> np.ndarray:
     return acc / G
 
 
-def series_sums(arrays: np.ndarray, keys, weights, nu_y: np.ndarray, ratio: float, count: int,
-                chirp: bool) -> dict:
-    """``sum_{|n| <= N_t} A(r, |n|) w(n) exp(2 pi i ratio n dy)``, ``0 <= dy < count``, of
-    every real array ``A = arrays[i]`` (rows ``r``, columns ``n >= 0``; the Gaussians of
-    :func:`gaussian_sums`) of the ``keys[i] = (a, p, odd)`` and every ``w`` of ``weights``
-    (functions of ``n``, 1/m), with the odd extension ``sign(n) Y`` for ``odd`` (``Y =
-    nu_y``, rad/m): real ``(rows, count)`` tables (``i`` times them for the odd ones; even,
-    or odd, in ``dy``) under ``(a, p, odd, index of w)``. By matrix products (the arrays of
-    one parity stacked, the weights side by side in the table), DCT-I / DST-I on a lattice,
-    or chirp-z, two arrays of one parity as one complex sum (they must be of one scale)."""
-    out = {}
-    _, rows, N = arrays.shape
-    Q = lattice_half(ratio, N, count) if chirp else None
-    for odd in (False, True):
-        mine = [i for i, key in enumerate(keys) if key[2] == odd]
-        if not mine:
-            continue
-        ws = [w * nu_y if odd else w for w in weights]
-        if not chirp:
-            stack = (arrays[mine[0] : mine[-1] + 1].reshape(-1, N) if mine == list(range(mine[0], mine[-1] + 1))
-                     else np.concatenate([arrays[i] for i in mine]))  # one product of the stacked arrays
-            T = trig_table(ratio, N, count, odd)
-            h = (stack @ np.concatenate([w[:, None] * T for w in ws], axis=1)).reshape(len(mine), rows, -1)
-            for j, i in enumerate(mine):
-                for iw in range(len(ws)):
-                    out[(*keys[i], iw)] = h[j][:, iw * count : (iw + 1) * count]
-        elif Q:
-            for i in mine:
-                for iw, w in enumerate(ws):
-                    out[(*keys[i], iw)] = (sin_sums(arrays[i] * w, Q, count) if odd
-                                           else cos_sums(arrays[i], Q, count, weight=w))
-        else:
-            for j in range(0, len(mine), 2):
-                pair = mine[j : j + 2]
-                AB = np.empty((rows, N), dtype=complex)
-                AB.real = arrays[pair[0]]
-                AB.imag = arrays[pair[1]] if len(pair) > 1 else 0.0
-                for iw, w in enumerate(ws):
-                    h = over_n(AB, odd, ratio, count, True, w)[:, count - 1 :]
-                    out[(*keys[pair[0]], iw)] = h.imag if odd else h.real
-                    if len(pair) > 1:
-                        out[(*keys[pair[1]], iw)] = -h.real if odd else h.imag
-    return out
+def column_sums(E: np.ndarray, odd: bool, weights, nu_y: np.ndarray, ratio: float, count: int,
+                chirp: bool) -> list:
+    """``sum_{|n| <= N_t} E(r, |n|) w(n) exp(2 pi i ratio n dy)``, ``0 <= dy < count``, of the
+    real rows ``E`` (columns ``n >= 0``) for every ``w`` of ``weights`` (functions of ``n``,
+    1/m), with the odd extension ``sign(n) Y`` for ``odd`` (``Y = nu_y``, rad/m): a real
+    ``(rows, count)`` table for each weight (``i`` times it for ``odd``; even, or odd, in
+    ``dy``). By one matrix product (the weights side by side in the table), DCT-I / DST-I on
+    a lattice, or chirp-z."""
+    N = E.shape[1]
+    ws = [w * nu_y if odd else w for w in weights]
+    if not chirp:
+        T = trig_table(ratio, N, count, odd)
+        h = E @ np.concatenate([w[:, None] * T for w in ws], axis=1)
+        return [h[:, i * count : (i + 1) * count] for i in range(len(ws))]
+    Q = lattice_half(ratio, N, count)
+    if Q:
+        return [sin_sums(E * w, Q, count) if odd else cos_sums(E, Q, count, weight=w) for w in ws]
+    return [(h.imag if odd else h.real) for h in (over_n(E, odd, ratio, count, True, w)[:, count - 1 :] for w in ws)]
 
 
 def gaussian_sums(nu_x: np.ndarray, nu_y: np.ndarray, weights, ratio: float, count: int, chirp: bool, keys):
-    """The sums of :func:`series_sums` for the rows of any modes: a function of a slice of
-    the rows ``nu_x`` (rad/m, ``m >= 0``) that returns, for every ``key = (a, p, odd)`` and
-    every ``w`` of ``weights`` (functions of ``n``, 1/m), ``sum_{|n| <= N_t} X^a / k^p w(n)
+    """The sums over ``n`` of the deep modes' real arrays: a function of a slice of the rows
+    ``nu_x`` (rad/m, ``m >= 0``) that returns, for every ``key = (a, p, odd)`` and every
+    ``w`` of ``weights`` (functions of ``n``, 1/m), ``sum_{|n| <= N_t} X^a / k^p w(n)
     exp(2 pi i ratio n dy)`` (``sign(n) Y`` more for ``odd``; 0 at ``k = 0``), ``0 <= dy <
     count``: real ``(rows, count)`` under ``(a, p, odd, index of w)``, ``i`` times them for
     the odd ones.
 
     With ``k^-p = sum_q c_q exp(-alpha_q X^2) exp(-alpha_q Y^2)``
     (:func:`inverse_power_gaussians`) a row's sum is ``X^a sum_q c_q exp(-alpha_q X^2)
-    T_q(dy)``, ``T_q`` the sums over ``n`` of ``exp(-alpha_q Y^2)`` (:func:`series_sums`, once
+    T_q(dy)``, ``T_q`` the sums over ``n`` of ``exp(-alpha_q Y^2)`` (:func:`column_sums`, once
     for all rows): a product ``(rows x Q) (Q x count)`` for every power, parity and weight,
     ``O(N_x Q count)`` instead of ``O(N_x N_y count)``, and no array over every mode. The
     Gaussians' value at ``k = 0`` (``sum c_q``, for ``a = 0``) leaves the row ``m = 0``."""
@@ -180,14 +155,12 @@ def gaussian_sums(nu_x: np.ndarray, nu_y: np.ndarray, weights, ratio: float, cou
                                        sorted({p for _, p, _ in keys}))
     E = np.multiply.outer(-alpha, nu_y * nu_y)
     np.exp(E, out=E)
-    parities = sorted({odd for *_, odd in keys})
-    T = series_sums(np.stack([E] * len(parities)), [(0, 0, odd) for odd in parities], weights, nu_y, ratio, count,
-                    chirp)
+    T = {odd: column_sums(E, odd, weights, nu_y, ratio, count, chirp) for odd in {odd for *_, odd in keys}}
     combos = sorted({(p, odd) for _, p, odd in keys})
     place = {combo: j * count for j, combo in enumerate(combos)}
     # a product for each weight: a kernel's sums do not depend on whether power tables are
     # asked as well (the same numbers, bit for bit)
-    stacks = [np.concatenate([c[p][:, None] * T[0, 0, odd, ik] for p, odd in combos], axis=1) for ik in range(nw)]
+    stacks = [np.concatenate([c[p][:, None] * T[odd][ik] for p, odd in combos], axis=1) for ik in range(nw)]
 
     def rows(s: slice) -> dict:
         X = nu_x[s]
