@@ -293,7 +293,7 @@ def _static_parts(k, H):
     shape = np.shape(k)
     y = 2.0 * H * np.ravel(k)
     E = np.exp(-y)
-    den = 1.0 + E * (E + y * y + 2.0)  # 2 D e^-y
+    den = 1.0 + E * (E + 2.0) + (E * y) * y  # 2 D e^-y; E y first: no inf * 0 at huge k H
     with np.errstate(divide="ignore", invalid="ignore"):  # k = 0: the limits, below
         zz = H * (1.0 - E * (E + 2.0 * y)) / (y * den)
         ll = H * (2.0 * y * E - np.expm1(-2.0 * y)) / (y * den)
