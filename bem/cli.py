@@ -324,7 +324,7 @@ def _print_result(args, problem, friction, result, summary, LineContact) -> None
             print(f"stick fraction      {result.stick_fraction:.4g}")
 
 
-_PAUSED = []  # the cyclic collector paused by the command while its modules load
+_paused = False  # the cyclic collector paused by the command while its modules load
 
 
 def _pause_collection() -> None:
@@ -333,17 +333,19 @@ def _pause_collection() -> None:
     to the end of the process, so the collector found nothing to free there, in 45 passes
     over ever more survivors: 6-8 ms of a 0.23 s ``bem solve`` (the elastic paraboloid with
     friction at 0.2 mm)."""
+    global _paused
     if gc.isenabled():
         gc.disable()
-        _PAUSED.append(True)
+        _paused = True
 
 
 def _modules_loaded() -> None:
     """The modules loaded: their objects frozen (:func:`gc.freeze`, never scanned again)
     and the collector back on for the solve, whose cycles it must free, if
     :func:`_pause_collection` paused it."""
-    if _PAUSED:
-        _PAUSED.clear()
+    global _paused
+    if _paused:
+        _paused = False
         gc.freeze()
         gc.enable()
 
