@@ -222,37 +222,34 @@ def inverse_power_gaussians(k_min: float, k_max: float, powers=(1, 3)) -> tuple[
 GAUSSIAN_STEP = 0.1
 
 
-def square_sums(nu: np.ndarray, weight: np.ndarray, ratio: float, count: int, parts) -> dict:
+def square_sums(nu: np.ndarray, weight: np.ndarray, ratio: float, count: int, parts, chirp: bool = False) -> dict:
     """``G`` times the half-space kernels ``ww, uu, uv`` (m/N times Pa) of a square lattice
     of modes (the same ``nu`` (rad/m), ``weight`` (1/m) and ``ratio = a / L`` along ``x`` and
     ``y``) and a constant real ``G``, as sums of separable Gaussians: real tables ``(2 count -
-    1, 2 count - 1)`` of the ``parts`` asked.
+    1, 2 count - 1)`` of the parts asked.
 
-    With ``C = w (2 cos)`` and ``S = w (2 sin)`` (:func:`bem.mode_sums.over_n`'s tables,
-    ``N x count``) the sums over ``m, n >= 0`` are ``2 G ww = C' F C``, ``F = 1 / k`` (0 at
-    ``k = 0``), ``G uu = C' (F - nu_x^2 / (2 k^3)) C`` and ``2 G uv = S' (nu_x nu_y / k^3) S``
-    (:func:`halfspace_symbols`). With ``k^-p = sum_q c_q exp(-alpha_q nu_x^2) exp(-alpha_q
-    nu_y^2)`` (:func:`inverse_power_gaussians`) each is ``sum_q c_q A_q' B_q`` of the rows of
-    products of ``E = exp(-alpha nu^2)`` (Q x N, the same for both powers) with a table:
-    ``O(Q N count)``, not ``O(N^2 count)``. The mode ``k = 0`` that the Gaussians give ``F``
-    (``sum c_q``) is taken off. ``C' F C`` is indexed ``[dx, dy]``, the tables ``[dy, dx]``."""
-    N = nu.size
+    With ``k^-p = sum_q c_q exp(-alpha_q nu_x^2) exp(-alpha_q nu_y^2)``
+    (:func:`inverse_power_gaussians`) and ``F = 1 / k`` (0 at ``k = 0``), the sums over ``m,
+    n >= 0`` are ``2 G ww = sum_q c_q A_q' A_q``, ``G uu = 2 G ww - sum_q c_q X_q' A_q / 2`` and
+    ``2 G uv = sum_q c_q B_q' B_q`` (:func:`halfspace_symbols`), of the single sums over ``n``
+    (:func:`column_sums`: products, DCT-I / DST-I or chirp-z, as ``chirp`` says) of ``E =
+    exp(-alpha nu^2)`` against ``w``, ``nu^2 w`` and ``nu w`` (odd): ``O(Q N count)`` or
+    ``O(Q N log N)``, not ``O(N^2 count)``. The mode ``k = 0`` that the Gaussians give ``F``
+    (``sum c_q w_0^2``) is taken off. The sums are indexed ``[dx, dy]``, the tables ``[dy, dx]``."""
     nu2 = nu * nu
     alpha, c = inverse_power_gaussians(nu[1], math.sqrt(2.0) * nu[-1])
     E = np.multiply.outer(-alpha, nu2)
     np.exp(E, out=E)
-    C = weight[:, None] * trig_table(ratio, N, count, False)
-    A = E @ C
     out = {}
     if "ww" in parts or "uu" in parts:
-        F = (A.T * c[1]) @ A - c[1].sum() * np.outer(C[0], C[0])
+        A, *X = column_sums(E, False, [weight] + ([nu2 * weight] if "uu" in parts else []), nu, ratio, count, chirp)
+        F = (A.T * c[1]) @ A - c[1].sum() * weight[0] ** 2
         if "ww" in parts:
             out["ww"] = _unfold(0.5 * F, 1.0)
-    if "uu" in parts:
-        X2 = (E @ (nu2[:, None] * C)).T * c[3] @ A  # nu_x^2 / k^3
-        out["uu"] = _unfold((F - 0.5 * X2).T, 1.0)
+        if "uu" in parts:
+            out["uu"] = _unfold((F - 0.5 * (X[0].T * c[3]) @ A).T, 1.0)  # nu_x^2 / k^3
     if "uv" in parts:
-        B = E @ ((nu * weight)[:, None] * trig_table(ratio, N, count, True))
+        (B,) = column_sums(E, True, [weight], nu, ratio, count, chirp)
         out["uv"] = _unfold(0.5 * (B.T * c[3]) @ B, -1.0)
     return out
 

@@ -211,7 +211,7 @@ def _kernels_halfspace_split(grid: Grid, layer: Layer, speed: float, blocks: tup
     need = {"ww": ("ww", "vv"), "uu": ("uu", "vv"), "uv": ("uv", "vu")}
     parts = [b for b in ("ww", "uu", "uv") if any(t in blocks for t in need[b])]
     kinds = ("kernel", "power") if power else ("kernel",)
-    square = (not chirp and not power and Kx == Ky and np.array_equal(nu_x, nu_y) and np.array_equal(wx, wy)
+    square = (not power and Kx == Ky and np.array_equal(nu_x, nu_y) and np.array_equal(wx, wy)
               and rx == ry and np.all(G == G[0]) and G[0].imag == 0)
     H = {} if square else {(k, b): np.empty((m.size, Ky), dtype=complex) for k in kinds for b in parts}
     # ww = 1 / (2 k), uu = (nu_x^2 / 2 + nu_y^2) / k^3 = 1 / k - nu_x^2 / (2 k^3),
@@ -236,7 +236,7 @@ def _kernels_halfspace_split(grid: Grid, layer: Layer, speed: float, blocks: tup
 
     if square:
         half = {("kernel", b): t / G[0].real
-                for b, t in square_sums(nu_x, wx, rx, Kx, parts).items()}
+                for b, t in square_sums(nu_x, wx, rx, Kx, parts, chirp).items()}
     else:
         if keys:
             in_batches(m.size, work, ROWS)
