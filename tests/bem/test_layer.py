@@ -245,3 +245,108 @@ def test_without_inertia_the_closed_form_is_the_general_route(H):
         assert np.all(np.abs(got[i] - ref[i]) * k <= 1e-14 * np.abs(ref[4])), i
     assert got[1][0] == 0 and got[4][0] == got[5][0] == H / G[0]
     assert got[2][0] == -got[3][0] == pytest.approx(-0.5j * H * H / G[0], rel=1e-15)
+
+
+def _general_parts(k, d, H):
+    """The general route's wave-frame compliances times G at q = sqrt(k^2 - d)
+    (bem.layer._wave_frame_small / _large and the antiplane tanh(qH) / q), for modes that
+    see the base (kH <= 50)."""
+    from bem.layer import _antiplane, _wave_frame_large, _wave_frame_small
+
+    q = np.sqrt(k * k - d)
+    small = k * H <= 2.0
+    out = [np.empty(k.shape, complex) for _ in range(5)]
+    for mask, fn in ((small, _wave_frame_small), (~small, _wave_frame_large)):
+        for o, v in zip(out, (*fn(k[mask], q[mask], H), _antiplane(q[mask], H))):
+            o[mask] = v
+    return out
+
+
+@pytest.mark.parametrize("H", [1e-3, 0.05])
+def test_a_little_inertia_to_second_order_is_the_general_route(H):
+    """Modes that see the base (kH <= 50) with eps = d / k^2 = rho V^2 nu_x^2 / (G k^2) up
+    to SERIES_EPS (1e-6) take the static parts plus d P1 + d^2 P2 (bem.layer._expanded_parts,
+    _INERTIA_TERMS): from kH = 1e-6 to 50 (both sides of the series' switch at y = 2 kH =
+    2.5), against the general route at eps = 1e-6, 1e-6 (1 + 0.3 i) and 6e-7 i: c_zz, c_LL,
+    c_TT within 1e-14 of themselves (measured up to 3.0e-15, the general route's own
+    rounding), the couplings within 1e-14 of c_LL / k (measured 2.9e-15; past kH = 3 they
+    are of order eps themselves, where the general route keeps a difference of near-equal
+    terms: test below). At |eps| = 1e-3 the residual is the third-order term, below 0.8
+    |eps|^3 of c_zz, c_LL, c_TT and 0.4 |eps|^3 of c_LL / k for the couplings (measured
+    0.688, 0.188, 0.313 and 0.344: the half-space's 11/16, 3/16, 5/16, 11/32): a wrong P2
+    would leave eps^2, a wrong P1 eps."""
+    from bem.layer import _expanded_parts
+
+    k = np.geomspace(1e-6, 50.0, 1201) / H
+    for eps, bound in ((1e-6, None), (1e-6 * (1 + 0.3j), None), (6e-7j, None), (1e-3, 0.8), (-1e-3 * (1 - 0.5j), 0.8)):
+        d = complex(eps) * k * k
+        got, ref = _expanded_parts(k, d, H), _general_parts(k, d, H)
+        tol = 1e-14 if bound is None else bound * abs(eps) ** 3
+        for i, name in ((0, "c_zz"), (3, "c_LL"), (4, "c_TT")):
+            assert np.all(np.abs(got[i] - ref[i]) <= tol * np.abs(ref[i])), (eps, name)
+        cpl = 1e-14 if bound is None else 0.4 * abs(eps) ** 3
+        for i in (1, 2):
+            assert np.all(np.abs(got[i] - ref[i]) * k <= cpl * np.abs(ref[3])), (eps, i)
+        np.testing.assert_array_equal(got[1], -got[2])  # reciprocity, at every order
+
+
+def test_a_little_inertia_terms_limits():
+    """P1 and P2 of c_zz, c_zL/k (as zl: G c_zL/k = -i (zl + d zl1 + d^2 zl2)), c_LL, c_TT: at
+    k = 0 sympy's 0, 5 H^4/24, H^3/3, H^3/3 and 0, 61 H^6/720, 2 H^5/15, 2 H^5/15 (1e-15);
+    past kH = 60 those of the half-space's k (k + q) / R, i (k - q) / R, q (q + k) / R, 1 /
+    q (R = q^3 + k q^2 + 3 k^2 q - k^3): 3/(8 k^3), -1/(8 k^4), 1/(8 k^3), 1/(2 k^3) and
+    11/(32 k^5), -5/(32 k^6), 3/(32 k^5), 3/(8 k^5), to 1e-14 (the base's e^{-2kH} is far
+    below); finite to k H = 1e300."""
+    from bem.layer import _inertia_parts
+
+    H = 2e-3
+    (zz1, zl1, ll1, tt1), (zz2, zl2, ll2, tt2) = _inertia_parts(np.array([0.0]), H)
+    np.testing.assert_allclose([zz1[0], zl1[0] / H**4, ll1[0] / H**3, tt1[0] / H**3], [0, 5 / 24, 1 / 3, 1 / 3],
+                               rtol=1e-15, atol=0)
+    np.testing.assert_allclose([zz2[0], zl2[0] / H**6, ll2[0] / H**5, tt2[0] / H**5], [0, 61 / 720, 2 / 15, 2 / 15],
+                               rtol=1e-15, atol=0)
+    k = np.geomspace(60.0, 1e4, 50) / H
+    first, second = _inertia_parts(k, H)
+    for got, want in zip((*first, *second), (3 / 8 / k**3, -1 / 8 / k**4, 1 / 8 / k**3, 1 / 2 / k**3,
+                                             11 / 32 / k**5, -5 / 32 / k**6, 3 / 32 / k**5, 3 / 8 / k**5)):
+        np.testing.assert_allclose(got, want, rtol=1e-14, atol=0)
+    huge = np.array([1e3, 1e10, 1e300]) / H
+    assert all(np.isfinite(a).all() for a in (*_inertia_parts(huge, H)[0], *_inertia_parts(huge, H)[1]))
+
+
+@pytest.mark.parametrize("kh", [3.0, 10.0, 12.6, 30.0, 49.0])
+def test_couplings_with_a_little_inertia_near_the_base_on_their_own_scale(kh):
+    """Past kH = 3 a slow roll's couplings are themselves of order eps (the static
+    coupling falls as e^{-2kH}, the inertia's i eps / (8 k^2) does not): the expansion
+    carries them to 1e-11 of themselves against a 40-digit matrix exponential (measured
+    up to 3.1e-13, their third-order term), where the general route's difference of
+    near-equal terms was up to 1.7e-9 off (eps = 4.6e-7, kH = 30)."""
+    G, rho_V2 = 3e6 + 1e6j, 2.5
+    k = kh / H
+    nx, ny = k * np.cos(0.7), k * np.sin(0.7)
+    R = _compliance_mp(nx, ny, G, rho_V2, H, digits=40)
+    C = surface_compliance(nx, ny, G, rho_V2, H)
+    for i, j in ((0, 1), (0, 2), (1, 0), (2, 0)):
+        assert abs(C[i, j] - R[i, j]) <= 1e-11 * abs(R[i, j]), (i, j)
+
+
+@pytest.mark.parametrize("H", [1e-3, 0.05])
+def test_a_little_inertia_terms_are_the_general_routes_derivatives(H):
+    """P1 and P2 (bem.layer._inertia_parts) against central differences of the general
+    route in d (d = +-h, h = 3e-3 k^2) from kH = 0.05 to 50: P1 within 3e-5 (measured up to
+    1.2e-5, the difference's h^2 term), P2 within 1.5e-4 (measured up to 6.1e-5), each of
+    its own size, the couplings' of the size of the c_LL term over k. The test above
+    bounds the expansion's residual by eps^3; this one holds each term on its own (a P2
+    wrong by 1 % near kH = 2 leaves less than 1e-17 at eps = 1e-6)."""
+    from bem.layer import _inertia_parts, _static_parts
+
+    k = np.geomspace(0.05, 50.0, 300) / H
+    h = 3e-3 * k * k
+    plus, minus = _general_parts(k, h + 0j, H), _general_parts(k, -h + 0j, H)
+    p0, (first, second) = _static_parts(k, H), _inertia_parts(k, H)
+    for general, static, unit in ((0, 0, 1.0), (1, 1, -1j), (3, 2, 1.0), (4, 3, 1.0)):
+        d1 = (plus[general] - minus[general]) / (2 * h)
+        d2 = (plus[general] + minus[general] - 2 * unit * p0[static]) / (2 * h * h)
+        size = (lambda P: np.abs(P[2]) / k) if static == 1 else (lambda P: np.abs(P[static]))
+        assert np.all(np.abs(d1 - unit * first[static]) <= 3e-5 * size(first)), general
+        assert np.all(np.abs(d2 - unit * second[static]) <= 1.5e-4 * size(second)), general
