@@ -429,6 +429,29 @@ def test_the_route_follows_the_series_bound(speed, route, monkeypatch):
         assert np.abs(fast[b] - direct[b]).max() <= tol * np.abs(direct[b]).max(), b
 
 
+@pytest.mark.parametrize("speed", [0.0, 0.05])
+def test_a_layer_under_every_mode_takes_the_direct_route(speed, monkeypatch):
+    """A layer thin enough that every mode sees the base (3 mm on GRID: nu_x H <= 37.7,
+    nu_y H <= 22.6, both at most 50) takes the direct route, every mode's own symbol
+    (_kernels_streamed), without inertia and with a little (the split and the series would
+    take all their deep sums off again); 3.98 mm is the edge, 4.1 mm the split or the
+    series again; each against the direct sum, 1e-14 of the block."""
+    import bem.spectral
+
+    taken = []
+    for name in ("_kernels_series", "_kernels_streamed", "_kernels_halfspace_split"):
+        fn = getattr(bem.spectral, name)
+        monkeypatch.setattr(bem.spectral, name, lambda *a, _fn=fn, _name=name, **k: taken.append(_name) or _fn(*a, **k))
+    layer = Layer(3e-3, ThreeParameterSolid(G0=3.0e6, tau=0.25, f=1.0), density=1000.0)
+    fast = influence_kernels(GRID, layer, speed, BLOCKS)
+    direct = influence_kernels_direct(GRID, layer, speed, BLOCKS)
+    for b in BLOCKS:
+        assert np.abs(fast[b] - direct[b]).max() <= 1e-14 * np.abs(direct[b]).max(), b
+    for H in (3.97e-3, 4.1e-3):
+        influence_kernels(GRID, Layer(H, layer.material, density=1000.0), speed, ("ww",))
+    assert taken == ["_kernels_streamed"] * 2 + ["_kernels_series" if speed else "_kernels_halfspace_split"]
+
+
 @pytest.mark.parametrize("layer, speed", [(VISCO, 0.05), (ELASTIC, 0.0), (Layer(5e-3, Elastic(3.0e6), density=1000.0), 30.0)],
                          ids=["series", "half-space split", "general"])
 @pytest.mark.parametrize("blocks", [("vu",), ("uw", "vu"), ("vw",), ("uv", "vu")])
