@@ -46,6 +46,11 @@ PLANTED = {
           "out[:, 1:] = (f[:, 1:] - f[:, :-1]) / spacing_x\n    out[:, 0] = out[:, 1]", 1)],
         ["tests/bem/test_kinematics.py::test_upwind_difference_of_a_quadratic_is_the_slope_half_a_step_upstream"],
     ),
+    "second-order inertia term 1 % off in one coefficient": (
+        "bem/layer.py",
+        [('(-960, 1, 1, "c")', '(-970, 1, 1, "c")', 1)],
+        ["tests/bem/test_layer.py::test_a_little_inertia_terms_are_the_general_routes_derivatives"],
+    ),
     "cylinder rolling arm -x / 2R": (
         "bem/indenters.py",
         [("np.inf)\n\n    def rolling_arm(self, X, Y):\n        return np.asarray(X, float) / self.radius",
