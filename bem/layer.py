@@ -348,7 +348,7 @@ _INERTIA_TERMS = {
 #: below this ``y = 2 k H`` the numerators are summed as Taylor series (their closed forms
 #: cancel: the first-order c_zz by 1e-13 at ``y = 1``, 2e-15 at ``y = 2``)
 INERTIA_SERIES_Y = 2.5
-_SERIES_TERMS = 30  # of the series in y^2: the next term is below 1e-17 at INERTIA_SERIES_Y
+_SERIES_TERMS = 22  # of the series in y^2: at INERTIA_SERIES_Y the next is below 1e-22 of the sum
 
 
 _INERTIA_NAMES = [(order, name) for order in (1, 2) for name in ("zz", "zl", "ll", "tt")]
@@ -482,9 +482,9 @@ def _mode_parts(nu_x, nu_y, G, rho_V2, H):
     k^2``, takes those plus their terms of first and second order in ``d``
     (:func:`_expanded_parts`): the next term is below 0.7 ``eps^3`` of each compliance,
     rounding, and where ``kH > 3`` the couplings, themselves of order ``eps`` there, are
-    nearer the truth than the general route's difference of near-equal terms (1e-12
-    against 6e-10 of the coupling at ``eps = 1e-6``). The other modes take the general
-    route, deep ones the half-space."""
+    nearer the truth than the general route's difference of near-equal terms (3.1e-13
+    against up to 1.7e-9 of the coupling at ``eps = 4.6e-7``, against a 40-digit matrix
+    exponential). The other modes take the general route, deep ones the half-space."""
     nu_x, nu_y, G = np.broadcast_arrays(
         np.asarray(nu_x, float), np.asarray(nu_y, float), np.asarray(G, complex)
     )
