@@ -360,7 +360,7 @@ def _inertia_tables():
     numerators ``num e^{-n y}`` (``E = e^{-y}``: ``sinh(j y) e^{-n y} = (E^{n-j} - E^{n+j}) /
     2``) on the products ``E^e y^p`` that occur (listed), and the series: the coefficients
     of ``num / y^m`` in ``y^2`` (``num`` starts at ``y^m``), exact (integers over a common
-    factorial) then rounded; with each term's ``a, c, p, B, n, m``."""
+    factorial) then rounded; with each term's ``a - 2 order, c, p, B, n, m``."""
     closed = {}
     series = np.zeros((len(_INERTIA_NAMES), _SERIES_TERMS))
     meta = []
@@ -379,7 +379,7 @@ def _inertia_tables():
         m = next(i for i, v in enumerate(num) if v)
         assert not any(num[m + 1::2]), (order, name)  # num / y^m is even in y
         series[row] = [v / (2 * scale) for v in num[m::2][:_SERIES_TERMS]]
-        meta.append((a, c, p, B, n, m))
+        meta.append((a - 2 * order, c, p, B, n, m))
     keys = sorted(closed)
     return keys, np.array([closed[key] for key in keys]).T, series, meta
 
@@ -404,7 +404,8 @@ def _inertia_parts(k, H):
     out = np.empty((8, y.size))
     for start in range(0, y.size, _INERTIA_BLOCK):
         _inertia_block(y[start:start + _INERTIA_BLOCK], H, out[:, start:start + _INERTIA_BLOCK])
-    first, second = (tuple(r.reshape(shape) for r in out[i:i + 4]) for i in (0, 4))
+    first, second = (tuple(r.reshape(shape) * H ** (2 * order) for r in out[4 * order - 4:4 * order])
+                     for order in (1, 2))
     return first, second
 
 
@@ -413,7 +414,7 @@ def _expanded_parts(k, d, H):
     second order in a little inertia ``d = k^2 - q^2`` (:func:`_inertia_parts`), a block
     of modes at a time."""
     shape = np.shape(k)
-    k, d = np.ravel(k), np.ravel(d)
+    k, d = np.ravel(k), np.ravel(d) * (H * H)  # d H^2: P1 / H^2 and P2 / H^4 hold no H^6
     zz, zl, ll, tt = (np.empty(k.size, dtype=complex) for _ in range(4))
     P = np.empty((8, min(k.size, _INERTIA_BLOCK)))
     for start in range(0, k.size, _INERTIA_BLOCK):
@@ -433,9 +434,11 @@ _INERTIA_BLOCK = 4096
 
 
 def _inertia_block(y, H, out):
-    """:func:`_inertia_parts` on one block of ``y = 2 k H``, into ``out`` (8 rows)."""
+    """:func:`_inertia_parts` over ``H^2`` (first order) and ``H^4`` (second) on one block
+    of ``y = 2 k H``, into ``out`` (8 rows): no power of ``H`` above the second, finite up
+    to :data:`MAX_THICKNESS`."""
     keys, closed, series, meta = _inertia_tables()
-    scale = np.array([H ** (a - p) / c for a, c, p, *_ in meta])  # H^a / (c y^p) = scale (H / y)^p
+    scale = np.array([H**a / c for a, c, *_ in meta])  # a: H's power less 2 a order, 1 or 2
     big = np.flatnonzero(y >= INERTIA_SERIES_Y)
     if big.size:
         yb = y[big]
@@ -448,15 +451,14 @@ def _inertia_block(y, H, out):
         num = (closed * scale[:, None]) @ basis
         C = 0.5 * (1.0 + E) ** 2  # (1 + cosh y) e^{-y}
         B = {"C": _powers(1.0 / C, 3), "D": _powers(1.0 / (C + 0.5 * E * yc * yc), 3)}  # (B e^{-y})^-n
-        inv_y = _powers(H / yb, max(p for _, _, p, *_ in meta))
+        inv_y = _powers(1.0 / yb, max(p for _, _, p, *_ in meta))
         for row, (_, _, p, b, n, _) in enumerate(meta):
             out[row, big] = num[row] * inv_y[p] * B[b][n]
     small = np.flatnonzero(y < INERTIA_SERIES_Y)
     if small.size:
         ys = y[small]
         t = ys * ys
-        H_p = np.array([H**p for _, _, p, *_ in meta])
-        num = (series * (scale * H_p)[:, None]) @ np.array(_powers(t, _SERIES_TERMS - 1))  # times H^a / c
+        num = (series * scale[:, None]) @ np.array(_powers(t, _SERIES_TERMS - 1))
         ch = np.cosh(ys)
         B = {"C": _powers(1.0 / (ch + 1.0), 3), "D": _powers(1.0 / (ch + 0.5 * t + 1.0), 3)}
         for row, (_, _, p, b, n, m) in enumerate(meta):  # m - p: 0 or 2

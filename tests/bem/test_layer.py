@@ -350,3 +350,16 @@ def test_a_little_inertia_terms_are_the_general_routes_derivatives(H):
         size = (lambda P: np.abs(P[2]) / k) if static == 1 else (lambda P: np.abs(P[static]))
         assert np.all(np.abs(d1 - unit * first[static]) <= 3e-5 * size(first)), general
         assert np.all(np.abs(d2 - unit * second[static]) <= 1.5e-4 * size(second)), general
+
+
+def test_a_little_inertia_on_the_thickest_layer_stays_finite():
+    """The expansion's terms hold H^6 (the second-order coupling): they are taken over H^2
+    and H^4 and multiplied by d H^2, so a layer of MAX_THICKNESS (1e100 m) with inertia
+    keeps finite compliances on its only modes near the base (k H <= 50: k = 0 and k =
+    1e-101 rad/m here), and at k = 0 (d = 0) the static ones, c_LL = c_TT = H / G."""
+    from bem.layer import MAX_THICKNESS, _mode_parts
+
+    G = np.full(3, 3e6 + 1e6j)
+    parts = _mode_parts(np.array([0.0, 1e-101, 0.0]), np.array([0.0, 0.0, 1e-101]), G, 2.5, MAX_THICKNESS)
+    assert all(np.isfinite(p).all() for p in parts)
+    assert parts[4][0] == parts[5][0] == MAX_THICKNESS / G[0]
