@@ -27,7 +27,7 @@ Two independent evaluations:
   and accurate from ``kH = 0`` to the half-space limit. Without inertia the compliances
   are real closed forms in ``kH`` (:func:`_static_parts`); with a little (``|k^2 - q^2| <=
   1e-6 k^2``) a mode that sees the base takes those and their terms of first and second
-  order in ``k^2 - q^2`` (:func:`_expanded_parts`), exact to rounding and a third of the
+  order in ``k^2 - q^2`` (:func:`_expanded_parts`), exact to rounding in a third of the
   general route's time.
 
 Transcription note (checked by ``tests/bem/test_layer_derivation.py``): eq. 27 of the
