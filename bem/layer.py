@@ -386,7 +386,8 @@ def _inertia_tables():
 
 def _powers(x: np.ndarray, top: int) -> list:
     """``[x^0, x^1, ..., x^top]`` by products (an integer power of an array is a ``pow``
-    call an element)."""
+    call an element; ``np.vander``'s columns, strided, took 95 against 50 ms in
+    :func:`_expanded_parts` on 250 000 modes)."""
     out = [np.ones_like(x), x]
     while len(out) <= top:
         out.append(out[-1] * x)
