@@ -439,7 +439,7 @@ def _inertia_block(y, H, out):
     of ``y = 2 k H``, into ``out`` (8 rows): no power of ``H`` above the second, finite up
     to :data:`MAX_THICKNESS`."""
     keys, closed, series, meta = _inertia_tables()
-    scale = np.array([H**a / c for a, c, *_ in meta])  # a: H's power less 2 a order, 1 or 2
+    scale = np.array([H**a / c for a, c, *_ in meta])  # a: the power of H less twice the order (1 or 2)
     big = np.flatnonzero(y >= INERTIA_SERIES_Y)
     if big.size:
         yb = y[big]
