@@ -43,13 +43,17 @@ __all__ = ["ComplianceOperator", "THREADED_FROM", "fft_workers", "one_worker", "
            "values_of", "wrapped", "BLOCKS_KEPT", "Block"]
 
 #: FFTs of an embedding with this many points or more run on every core, smaller ones on
-#: one (a small transform costs less than handing it over). Measured, whole solves with the
-#: two settings alternated in one process (median of the pairs' ratios, one thread / every
-#: core): the frictionless solver, the CONTACT comparison case at 61 x 61 (embedding
-#: 128 x 128) 0.65, 121 x 121 0.72, section 11 41 x 41 0.57, 129 x 129 (258 x 258) 0.76,
-#: 257 x 257 (514 x 514) 1.20; the frictional one (on the contact's box) 61 x 61 (108 x 108) 0.84, 121 x 121 0.93,
-#: 41 x 41 0.85, 129 x 129 (225 x 216) 0.99, 257 x 257 (450 x 405) 0.95 and 1.06
-THREADED_FROM = 100_000
+#: one. Threads run in scipy.fft, whose import costs a process 0.135 s (:mod:`bem.fft`),
+#: and on two cores they gain only on long solves of large embeddings. Whole ``bem solve``
+#: runs as a user starts them (two cores, no thread variables; paired runs, median wall
+#: time), at this threshold against 100 000 points: the viscoelastic half-space of
+#: ``benchmarks/bem_viscoelastic_rolling.py`` (155 x 155 nodes, embedding 320 x 320) 0.246
+#: against 0.387 s, the paraboloid with friction at 0.05 mm (241 x 241) 1.55 against 1.60 s,
+#: section 11 with friction at 257 x 257 2.12 against 2.40 s and frictionless 0.43 against
+#: 0.63 s (514 x 514); frictionless at 385 x 385 (770 x 770) 0.72 s on one core against
+#: 0.86 s on two. Above it two cores pay: frictionless at 513 x 513 (1026 x 1026) 1.14
+#: against 1.18 s on one, at 1025 x 1025 9.29 against 9.72 s.
+THREADED_FROM = 1_000_000
 #: :meth:`ComplianceOperator.block` keeps the operators of this many block shapes
 BLOCKS_KEPT = 8
 _BLOCKS_LOCK = threading.Lock()

@@ -21,7 +21,8 @@ coarse level that the solver drops included: the elastic contact reaches the edg
 viscoelastic / elastic of the
 GMRES iterations (deterministic) and of the solve times (the median of the pairs' ratios,
 each pair run back to back). CPU time counts every thread (the transforms of an embedding
-of 100 000 points or more run on both cores, :data:`bem.operator.THREADED_FROM`).
+of :data:`bem.operator.THREADED_FROM` points or more run on every core; these grids' are
+smaller).
 
 Run with one BLAS thread: ``OPENBLAS_NUM_THREADS=1 python benchmarks/bem_viscoelastic_rolling.py
 --repeat 5``; ``--markdown`` prints the summary table alone on stdout (the running report on

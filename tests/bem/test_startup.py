@@ -62,6 +62,21 @@ def test_lattice_kernels_above_128_nodes_a_side_load_no_scipy_fft():
     assert out.splitlines()[-1] == "[]"
 
 
+def test_a_default_run_below_the_threaded_transforms_loads_no_scipy():
+    """Section 11 frictionless at 161 x 161 nodes (embedding 324 x 324, 105 000 points, below
+    :data:`bem.operator.THREADED_FROM`) run as a user starts it, every core available: its
+    transforms stay on one thread in numpy.fft, and scipy.fft's import (0.135 s, as long as
+    the solve) is not paid. On a one-core machine this holds trivially."""
+    code = ("import sys\n"
+            "from bem.cli import main\n"
+            f"assert main(['solve', {str(EXAMPLES / 'paper-section11-frictionless.toml')!r}, '--quiet', "
+            "'--set', 'grid.spacing=6.25e-5', '--set', 'grid.truncation=4000']) == 0\n"
+            "print(sorted(m for m in ('scipy.fft', 'scipy.special') if m in sys.modules))\n")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True,
+                         env={"PATH": "/usr/bin:/bin"}).stdout
+    assert out.splitlines()[-1] == "[]"
+
+
 def test_the_help_formatter_takes_the_terminal_width_from_columns(monkeypatch):
     from bem.cli import _Formatter
 

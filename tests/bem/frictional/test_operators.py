@@ -258,17 +258,17 @@ def test_transforms_go_threaded_from_the_threshold():
     from bem.operator import THREADED_FROM, ComplianceOperator, fft_workers, one_worker
     from bem.threads import cores
 
-    assert THREADED_FROM == 100_000
-    assert fft_workers((100, 1000)) == cores() and fft_workers((100, 999)) == 1 and fft_workers((1, 1)) == 1
+    assert THREADED_FROM == 1_000_000
+    assert fft_workers((1000, 1000)) == cores() and fft_workers((1000, 999)) == 1 and fft_workers((1, 1)) == 1
     with one_worker():
-        assert fft_workers((100, 1000)) == 1
+        assert fft_workers((1000, 1000)) == 1
         with one_worker():
-            assert fft_workers((1000, 1000)) == 1
-        assert fft_workers((100, 1000)) == 1
+            assert fft_workers((2000, 2000)) == 1
+        assert fft_workers((1000, 1000)) == 1
     with pytest.raises(KeyError):
         with one_worker():
             raise KeyError
-    assert fft_workers((100, 1000)) == cores()
+    assert fft_workers((1000, 1000)) == cores()
     kern = _random_kernels(SMALL, seed=21)["ww"]
     F = np.random.default_rng(22).normal(size=SMALL.shape)
     op = ComplianceOperator(SMALL, kern)
