@@ -369,14 +369,16 @@ def _keep_freed_memory(nodes: int) -> bool:
     is kept for its next arrays instead of going back to the system, whose fresh pages
     then fault in one by one as they are written.
 
-    glibc maps an array above 128 KiB on its own and unmaps it when it is freed, raises
-    that threshold to the size of each such array freed, and trims the heap's top once
-    twice the threshold is free there. A small grid's products and Krylov bases (100 KiB
-    to 10 MiB) then go back to the system and fault in again, call after call: two 1 MiB
-    arrays made and freed 20 times fault 9600 pages, 480 with the settings here, which
-    are glibc's own end state from the start (``M_MMAP_THRESHOLD`` :data:`MMAP_THRESHOLD`,
-    its ceiling; ``M_TRIM_THRESHOLD`` twice that) and :data:`HEAP_PAD` of slack on the
-    heap's top (``M_TOP_PAD``). Measured (``python -m bem.cli solve``, paired runs against
+    glibc gives freed memory back: an array above its mmap threshold (128 KiB at first;
+    the first kernels raise it to 31 MiB, :func:`bem.batches._keep_heap`) is unmapped when
+    freed, and the heap's top is trimmed once twice that threshold is free there. After
+    the kernels' large arrays are freed, a small grid's solve then writes fresh pages: at
+    61 x 61 nodes 4430 page faults after the kernels (the fine active set 2740), 180 with
+    :data:`HEAP_PAD` kept on the heap's top (``M_TOP_PAD``); two 1 MiB arrays made and
+    freed 20 times in a fresh process fault 9600 pages, 480 with it. Setting the pad
+    freezes glibc's thresholds, so they are set too, where glibc's own rule ends
+    (``M_MMAP_THRESHOLD`` :data:`MMAP_THRESHOLD`, its ceiling; ``M_TRIM_THRESHOLD``
+    twice that). Measured (``python -m bem.cli solve``, paired runs against
     the default allocator, one BLAS thread): the elastic paraboloid with friction at
     0.2 mm (61 x 61 nodes), 6700 against 11 700 page faults, 0.230 against 0.242 s
     (median ratio of 30 pairs 0.953); the viscoelastic half-space of
