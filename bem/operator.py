@@ -29,6 +29,7 @@ decayed at the border and both spectra stay positive.
 
 from __future__ import annotations
 
+import sys
 import threading
 from contextlib import contextmanager
 from dataclasses import dataclass
@@ -39,21 +40,32 @@ from . import fft as sfft
 from .grid import Grid
 from .threads import cores
 
-__all__ = ["ComplianceOperator", "THREADED_FROM", "fft_workers", "one_worker", "periodic_size", "spectrum_of",
+__all__ = ["ComplianceOperator", "THREADED_FROM", "IMPORT_PAYS_FROM", "fft_workers", "one_worker", "periodic_size", "spectrum_of",
            "values_of", "wrapped", "BLOCKS_KEPT", "Block"]
 
 #: FFTs of an embedding with this many points or more run on every core, smaller ones on
-#: one. Threads run in scipy.fft, whose import costs a process 0.135 s (:mod:`bem.fft`),
-#: and on two cores they gain only on long solves of large embeddings. Whole ``bem solve``
-#: runs as a user starts them (two cores, no thread variables; paired runs, median wall
-#: time), at this threshold against 100 000 points: the viscoelastic half-space of
+#: one (a small transform costs less than handing it over), once scipy.fft, which runs the
+#: threads (:mod:`bem.fft`), is loaded. Measured, whole solves with the two settings
+#: alternated in one process (median of the pairs' ratios, one thread / every core): the
+#: frictionless solver, the CONTACT comparison case at 61 x 61 (embedding 128 x 128) 0.65,
+#: 121 x 121 0.72, section 11 41 x 41 0.57, 129 x 129 (258 x 258) 0.76, 257 x 257
+#: (514 x 514) 1.20; the frictional one (on the contact's box) 61 x 61 (108 x 108) 0.84,
+#: 121 x 121 0.93, 41 x 41 0.85, 129 x 129 (225 x 216) 0.99, 257 x 257 (450 x 405) 0.95
+#: and 1.06. Section 11 with friction at 513 x 513 (a whole ``bem solve``, one run each):
+#: 10.9 s and 2.1 GB peak with threads from here on, 12.1 s and 2.8 GB without.
+THREADED_FROM = 100_000
+#: scipy.fft's import costs a process 0.135 s, which a run's threads pay back only where it
+#: transforms embeddings of this many points (a grid of about 500 x 500 nodes): below, the
+#: transforms stay on one thread until scipy.fft is loaded. Whole ``bem solve`` runs as a
+#: user starts them (two cores, no thread variables; paired runs, median wall time),
+#: against threads from :data:`THREADED_FROM` on regardless: the viscoelastic half-space of
 #: ``benchmarks/bem_viscoelastic_rolling.py`` (155 x 155 nodes, embedding 320 x 320) 0.246
 #: against 0.387 s, the paraboloid with friction at 0.05 mm (241 x 241) 1.55 against 1.60 s,
 #: section 11 with friction at 257 x 257 2.12 against 2.40 s and frictionless 0.43 against
-#: 0.63 s (514 x 514); frictionless at 385 x 385 (770 x 770) 0.72 s on one core against
-#: 0.86 s on two. Above it two cores pay: frictionless at 513 x 513 (1026 x 1026) 1.14
-#: against 1.18 s on one, at 1025 x 1025 9.29 against 9.72 s.
-THREADED_FROM = 1_000_000
+#: 0.63 s (514 x 514); frictionless at 385 x 385 (770 x 770) 0.72 against 0.86 s. From
+#: here on threads pay: frictionless at 513 x 513 (1026 x 1026) 1.14 against 1.18 s on one
+#: thread, at 1025 x 1025 9.29 against 9.72 s.
+IMPORT_PAYS_FROM = 1_000_000
 #: :meth:`ComplianceOperator.block` keeps the operators of this many block shapes
 BLOCKS_KEPT = 8
 _BLOCKS_LOCK = threading.Lock()
@@ -64,9 +76,13 @@ _ONE_WORKER = 0  # depth of the one_worker() blocks open
 
 def fft_workers(shape: tuple[int, int]) -> int:
     """Threads for the transforms of an embedding of ``shape``: every core the process may
-    use (:func:`bem.threads.cores`) from :data:`THREADED_FROM` points on, 1 below, and 1
-    inside :func:`one_worker`."""
-    return cores() if shape[0] * shape[1] >= THREADED_FROM and not _ONE_WORKER else 1
+    use (:func:`bem.threads.cores`) from :data:`THREADED_FROM` points on once scipy.fft is
+    loaded, from :data:`IMPORT_PAYS_FROM` points on before; 1 below, and 1 inside
+    :func:`one_worker`."""
+    points = shape[0] * shape[1]
+    if _ONE_WORKER or points < THREADED_FROM or points < IMPORT_PAYS_FROM and "scipy.fft" not in sys.modules:
+        return 1
+    return cores()
 
 
 def periodic_size(nodes: int) -> int:

@@ -20,9 +20,9 @@ coarse level that the solver drops included: the elastic contact reaches the edg
 20 x 20 level below 155 x 155, whose iterations are in no result's record); the ratios
 viscoelastic / elastic of the
 GMRES iterations (deterministic) and of the solve times (the median of the pairs' ratios,
-each pair run back to back). CPU time counts every thread (the transforms of an embedding
-of :data:`bem.operator.THREADED_FROM` points or more run on every core; these grids' are
-smaller).
+each pair run back to back). CPU time counts every thread (:func:`bem.operator.fft_workers`
+puts large transforms on every core; these grids' embeddings, up to 320 x 320, stay on one
+thread while scipy.fft is not loaded).
 
 Run with one BLAS thread: ``OPENBLAS_NUM_THREADS=1 python benchmarks/bem_viscoelastic_rolling.py
 --repeat 5``; ``--markdown`` prints the summary table alone on stdout (the running report on

@@ -64,7 +64,7 @@ def test_lattice_kernels_above_128_nodes_a_side_load_no_scipy_fft():
 
 def test_a_default_run_below_the_threaded_transforms_loads_no_scipy():
     """Section 11 frictionless at 161 x 161 nodes (embedding 324 x 324, 105 000 points, below
-    :data:`bem.operator.THREADED_FROM`) run as a user starts it, every core available: its
+    :data:`bem.operator.IMPORT_PAYS_FROM`) run as a user starts it, every core available: its
     transforms stay on one thread in numpy.fft, and scipy.fft's import (0.135 s, as long as
     the solve) is not paid. On a one-core machine this holds trivially."""
     code = ("import sys\n"

@@ -130,14 +130,14 @@ def test_fields_and_displacements_are_the_signed_block_sums(shape_in):
     from bem import operator as op_module
     from bem.threads import cores
 
-    kept, got = op_module.THREADED_FROM, []
+    kept, got = (op_module.THREADED_FROM, op_module.IMPORT_PAYS_FROM), []
     try:
         for threshold, workers in ((0, cores()), (10**12, 1)):
-            op_module.THREADED_FROM = threshold
+            op_module.THREADED_FROM = op_module.IMPORT_PAYS_FROM = threshold
             assert ops._workers() == workers
             got.append(ops.fields_on(nodes, forces))
     finally:
-        op_module.THREADED_FROM = kept
+        op_module.THREADED_FROM, op_module.IMPORT_PAYS_FROM = kept
     assert np.abs(got[0] - got[1]).max() <= 1e-14 * np.abs(got[1]).max()
     # increasing nodes (a system's contact) take the boolean-mask scatter: the same product
     order = np.argsort(nodes)
@@ -249,38 +249,48 @@ def test_coarse_operators_are_every_other_node():
     assert co.diagonal == kern["ww"][24, 24]
 
 
-def test_transforms_go_threaded_from_the_threshold():
-    """``fft_workers``: one thread below ``THREADED_FROM`` embedding points, every usable core from
-    there on, one inside ``one_worker`` (nested, and after an error, restored on leaving);
-    a ComplianceOperator asks at each product, and its product is the same to rounding
-    either way (one thread runs in numpy.fft, more in scipy.fft: :mod:`bem.fft`)."""
+def test_transforms_go_threaded_from_the_threshold(monkeypatch):
+    """``fft_workers``: every usable core from ``THREADED_FROM`` embedding points on once
+    scipy.fft (which runs the threads) is loaded, from ``IMPORT_PAYS_FROM`` on before (its
+    import, 0.135 s, pays only there), one thread below; one inside ``one_worker`` (nested,
+    and after an error, restored on leaving); a ComplianceOperator asks at each product,
+    and its product is the same to rounding either way (one thread runs in numpy.fft, more
+    in scipy.fft: :mod:`bem.fft`)."""
+    import sys
+    import types
+
     from bem import operator as op_module
-    from bem.operator import THREADED_FROM, ComplianceOperator, fft_workers, one_worker
+    from bem.operator import IMPORT_PAYS_FROM, THREADED_FROM, ComplianceOperator, fft_workers, one_worker
     from bem.threads import cores
 
-    assert THREADED_FROM == 1_000_000
-    assert fft_workers((1000, 1000)) == cores() and fft_workers((1000, 999)) == 1 and fft_workers((1, 1)) == 1
+    assert (THREADED_FROM, IMPORT_PAYS_FROM) == (100_000, 1_000_000)
+    monkeypatch.delitem(sys.modules, "scipy.fft", raising=False)
+    assert fft_workers((1000, 1000)) == cores() and fft_workers((1000, 999)) == 1
+    assert fft_workers((100, 1000)) == 1 and fft_workers((1, 1)) == 1
+    monkeypatch.setitem(sys.modules, "scipy.fft", types.ModuleType("scipy.fft"))
+    assert fft_workers((100, 1000)) == cores() and fft_workers((100, 999)) == 1 and fft_workers((1, 1)) == 1
     with one_worker():
-        assert fft_workers((1000, 1000)) == 1
+        assert fft_workers((100, 1000)) == 1
         with one_worker():
-            assert fft_workers((2000, 2000)) == 1
-        assert fft_workers((1000, 1000)) == 1
+            assert fft_workers((1000, 1000)) == 1
+        assert fft_workers((100, 1000)) == 1
     with pytest.raises(KeyError):
         with one_worker():
             raise KeyError
-    assert fft_workers((1000, 1000)) == cores()
+    assert fft_workers((100, 1000)) == cores()
+    monkeypatch.undo()
     kern = _random_kernels(SMALL, seed=21)["ww"]
     F = np.random.default_rng(22).normal(size=SMALL.shape)
     op = ComplianceOperator(SMALL, kern)
     assert op._workers == 1
     one = op.apply(F)
-    kept = op_module.THREADED_FROM
+    kept = op_module.THREADED_FROM, op_module.IMPORT_PAYS_FROM
     try:
-        op_module.THREADED_FROM = 0
+        op_module.THREADED_FROM = op_module.IMPORT_PAYS_FROM = 0
         assert op._workers == cores()
         every = op.apply(F)
         with one_worker():
             assert op._workers == 1
     finally:
-        op_module.THREADED_FROM = kept
+        op_module.THREADED_FROM, op_module.IMPORT_PAYS_FROM = kept
     assert np.abs(one - every).max() <= 1e-14 * np.abs(every).max()
