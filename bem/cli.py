@@ -384,8 +384,8 @@ def _keep_freed_memory(nodes: int) -> bool:
     (median ratio of 30 pairs 0.953); the viscoelastic half-space of
     ``benchmarks/bem_viscoelastic_rolling.py`` (155 x 155) 0.973, its peak 129 against
     106 MiB; the paraboloid at 0.1 mm (121 x 121) 1.01. On larger grids the default
-    wins: at 0.05 mm (241 x 241) 1.06-1.10 times as long, section 11 with friction at
-    385 x 385 1.10 (95 MiB more at the peak) and at 513 x 513 1.07 (500 MiB more).
+    wins: at 0.05 mm (241 x 241) 1.06-1.10 times as long; section 11 with friction, the
+    settings made at the process's start, 1.10 at 385 x 385 and 1.07 at 513 x 513.
 
     Nothing when the user sets the allocator (:data:`MALLOC_VARIABLES`, ``glibc.malloc``
     in ``GLIBC_TUNABLES``) or the C library is not glibc. Returns whether it was set."""
@@ -410,11 +410,12 @@ def command() -> None:
     """The ``bem`` command (its console script, and ``python -m bem.cli``): :func:`main`
     with one BLAS thread from the start (:func:`bem.threads.one_blas_thread_from_start`)
     and, on a small grid, the allocator keeping the memory the solve frees
-    (:func:`_keep_freed_memory`), then, its output flushed, the process ends at once (``os._exit``) instead of tearing
-    down the interpreter, which freed every module and array one by one: 0.02 s of a
-    0.3 s ``bem solve`` (the elastic paraboloid with friction at 0.2 mm). Every file it
-    writes is closed by then (:func:`_commit`). Usage errors and ``--help`` exit through
-    ``SystemExit`` as usual; in-process callers (the tests) call :func:`main`."""
+    (:func:`_keep_freed_memory`); then, its output flushed, the process ends at once
+    (``os._exit``) instead of tearing down the interpreter, which freed every module and
+    array one by one: 0.02 s of a 0.3 s ``bem solve`` (the elastic paraboloid with friction
+    at 0.2 mm). Every file it writes is closed by then (:func:`_commit`). Usage errors and
+    ``--help`` exit through ``SystemExit`` as usual; in-process callers (the tests) call
+    :func:`main`."""
     global _own_process
     _own_process = True
     one_blas_thread_from_start()

@@ -40,8 +40,8 @@ from . import fft as sfft
 from .grid import Grid
 from .threads import cores
 
-__all__ = ["ComplianceOperator", "THREADED_FROM", "IMPORT_PAYS_FROM", "fft_workers", "one_worker", "periodic_size", "spectrum_of",
-           "values_of", "wrapped", "BLOCKS_KEPT", "Block"]
+__all__ = ["ComplianceOperator", "THREADED_FROM", "IMPORT_PAYS_FROM", "fft_workers", "one_worker", "periodic_size",
+           "spectrum_of", "values_of", "wrapped", "BLOCKS_KEPT", "Block"]
 
 #: FFTs of an embedding with this many points or more run on every core, smaller ones on
 #: one (a small transform costs less than handing it over), once scipy.fft, which runs the
@@ -52,7 +52,8 @@ __all__ = ["ComplianceOperator", "THREADED_FROM", "IMPORT_PAYS_FROM", "fft_worke
 #: (514 x 514) 1.20; the frictional one (on the contact's box) 61 x 61 (108 x 108) 0.84,
 #: 121 x 121 0.93, 41 x 41 0.85, 129 x 129 (225 x 216) 0.99, 257 x 257 (450 x 405) 0.95
 #: and 1.06. Section 11 with friction at 513 x 513 (a whole ``bem solve``, one run each):
-#: 10.9 s and 2.1 GB peak with threads from here on, 12.1 s and 2.8 GB without.
+#: 10.9 s with threads from here on, 12.1 s with none below 1 000 000 points (its coarse
+#: levels' boxes).
 THREADED_FROM = 100_000
 #: scipy.fft's import costs a process 0.135 s, which a run's threads pay back only where it
 #: transforms embeddings of this many points (a grid of about 500 x 500 nodes): below, the
