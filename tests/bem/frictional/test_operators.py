@@ -284,13 +284,10 @@ def test_transforms_go_threaded_from_the_threshold(monkeypatch):
     op = ComplianceOperator(SMALL, kern)
     assert op._workers == 1
     one = op.apply(F)
-    kept = op_module.THREADED_FROM, op_module.IMPORT_PAYS_FROM
-    try:
-        op_module.THREADED_FROM = op_module.IMPORT_PAYS_FROM = 0
-        assert op._workers == cores()
-        every = op.apply(F)
-        with one_worker():
-            assert op._workers == 1
-    finally:
-        op_module.THREADED_FROM, op_module.IMPORT_PAYS_FROM = kept
+    monkeypatch.setattr(op_module, "THREADED_FROM", 0)
+    monkeypatch.setattr(op_module, "IMPORT_PAYS_FROM", 0)
+    assert op._workers == cores()
+    every = op.apply(F)
+    with one_worker():
+        assert op._workers == 1
     assert np.abs(one - every).max() <= 1e-14 * np.abs(every).max()
