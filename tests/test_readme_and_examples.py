@@ -14,7 +14,9 @@
 - Every ``toml`` block is the example file it names, and that file passes the schema.
 - Every ``examples/*.toml`` solves with ``bem solve --json --quiet``, and with
   ``fem-reference solve --json --quiet`` where :func:`casefile.read` lets the FEM read it.
-- The relative links of the README and of every page of ``docs/`` resolve.
+- Every case file of ``benchmarks/`` passes the schema and makes a BEM problem.
+- The relative links of the README, BENCHMARKS.md, TESTING.md and of every page of
+  ``docs/`` and ``benchmarks/`` resolve.
 
 Commands and blocks run in a scratch folder that mirrors the repository root (symbolic
 links to its top-level entries), so the README's relative paths (``examples/...``) work
@@ -291,10 +293,19 @@ def test_each_fem_readable_example_solves_with_the_fem(path):
     assert {"load", "indentation", "contact_radius", "peak_pressure"} <= set(summary)
 
 
+@pytest.mark.parametrize("path", sorted((REPO / "benchmarks").rglob("*.toml")), ids=lambda p: p.name)
+def test_benchmark_case_files_make_problems(path):
+    from bem.case import problem_from_config, read_case
+
+    problem, _ = problem_from_config(read_case(path, []))
+    assert problem.grid.nodes_x > 1
+
+
 # --- links ------------------------------------------------------------------------------
 
 
-DOCS = ["README.md", *sorted(p.relative_to(REPO).as_posix() for p in (REPO / "docs").glob("*.md"))]
+DOCS = ["README.md", "BENCHMARKS.md", "TESTING.md",
+        *sorted(p.relative_to(REPO).as_posix() for folder in ("docs", "benchmarks") for p in (REPO / folder).rglob("*.md"))]
 
 
 @pytest.mark.parametrize("doc", DOCS)
