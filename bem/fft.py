@@ -3,8 +3,8 @@
 numpy.fft and scipy.fft are the same library (pocketfft). SciPy adds threads
 (``workers``), which pay from :data:`bem.operator.THREADED_FROM` points on, and its import
 from :data:`~bem.operator.IMPORT_PAYS_FROM`: the import costs a process 0.135 s (it loads
-scipy.special and the array-API layer; median of five, after numpy), a fifth of a
-``bem solve`` at 0.1 mm. So a transform runs in numpy.fft when
+scipy.special and the array-API layer; median of five, after numpy), a quarter of
+a ``bem solve`` at 0.1 mm (0.45 s). So a transform runs in numpy.fft when
 it is asked of one thread, in scipy.fft (imported by the first such transform) when asked
 of more. On one thread the two take the same time: the frictional products' pruned
 transforms (:func:`bem.operator.spectrum_of`, :func:`~bem.operator.values_of`) of three

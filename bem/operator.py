@@ -162,8 +162,7 @@ def one_worker():
     """Every transform on one thread while the block runs, on every thread: for two threads
     that solve side by side (the frictional solver's coarse levels and its frictionless
     start), each then on its own core instead of four transform threads on two cores.
-    Measured (section 11 at 513 x 513, whole frictional solves alternated with and without,
-    ``benchmarks/bem_friction_rolling.py``): see ``BENCHMARKS.md``, seventeenth pass."""
+    What it saves (section 11 at 513 x 513): :func:`bem.frictional.solve._first_solves`."""
     global _ONE_WORKER
     _ONE_WORKER += 1
     try:
