@@ -103,8 +103,8 @@ def contact_answer(out: Path, kind: str, mat: Path) -> dict:
             raise SystemExit(f"{out}: no line '{head}': not CONTACT's output of a converged case")
         return lines[i + 1].split()
 
-    npot, ncon, nadh = (int(v) for v in after("NPOT NCON NADH")[:3])
-    if kind == "friction":
+    _, ncon, nadh = (int(v) for v in after("NPOT NCON NADH")[:3])  # potential, contact, adhesion (stick)
+    if kind == "friction":  # its FX is our driving force with the opposite sign (its convention)
         return {"Fx / (mu P)": -float(after("FN/G FX/FSTAT/FN")[1]), "contact": ncon, "stick fraction": nadh / ncon}
     return {"R_r (N)": rolling_resistance(mat), "contact": ncon}
 
