@@ -19,8 +19,8 @@ pass``), numpy's import on top, and our modules' import on top of that (the ``be
 ``casefile`` modules the run loaded; the collector paused and one BLAS thread, as ``bem``
 has them), with the time Python spent building their dataclasses (timed inside
 ``dataclasses``'s class builder, where this Python has the one of 3.11-3.13); then the
-default run's wall and the answer (driving force over ``mu P``, stick fraction). CONTACT's whole runs of the case:
-``benchmarks/contact_reference.py``.
+default run's wall and the answer (driving force over ``mu P``, stick fraction).
+CONTACT's whole runs of the case: ``benchmarks/contact_reference.py``.
 
 Run: ``python benchmarks/bem_whole_run.py [--spacing 0.2e-3 0.1e-3 0.05e-3] [--repeat 5]``;
 ``--markdown`` prints the summary table alone on stdout (the running report on stderr)
@@ -127,7 +127,8 @@ def run(spacing: float, repeat: int) -> list:
     wall = med(r[0] for r in runs)
     answer = runs[-1][2]
     nodes = int(round(2 * 6.0e-3 / spacing)) + 1
-    return [f"{spacing * 1e3:g} mm, {nodes} x {nodes}, Nt = {truncation}", f"{wall:.3f}", f"{med(r[1] for r in runs):.3f}",
+    return [f"{spacing * 1e3:g} mm, {nodes} x {nodes}, Nt = {truncation}", f"{wall:.3f}",
+            f"{med(r[1] for r in runs):.3f}",
             f"{timing['kernel_s']:.3f}", f"{timing['solve_s']:.3f}", f"{timing['energy_s']:.4f}",
             f"{wall - sum(timing.values()):.3f}", f"{med(starts):.3f}", f"{med(numpys) - med(starts):.3f}",
             f"{med(ours) - med(numpys):.3f} ({med(classes):.3f})", f"{med(defaults):.2f}",

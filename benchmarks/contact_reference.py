@@ -134,7 +134,8 @@ def our_answer(args: list, kind: str) -> dict:
     ax, ay = r["grid"]["spacing"]
     nodes = round(r["contact_area"] / (ax * ay))
     if kind == "friction":
-        return {"Fx / (mu P)": r["driving_force"] / (MU * LOAD), "contact": nodes, "stick fraction": r["stick_fraction"]}
+        return {"Fx / (mu P)": r["driving_force"] / (MU * LOAD), "contact": nodes,
+                "stick fraction": r["stick_fraction"]}
     return {"R_r (N)": r["rolling_resistance"], "contact": nodes}
 
 

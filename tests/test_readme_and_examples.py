@@ -305,7 +305,8 @@ def test_benchmark_case_files_make_problems(path):
 
 
 DOCS = ["README.md", "BENCHMARKS.md", "TESTING.md",
-        *sorted(p.relative_to(REPO).as_posix() for folder in ("docs", "benchmarks") for p in (REPO / folder).rglob("*.md"))]
+        *sorted(p.relative_to(REPO).as_posix() for folder in ("docs", "benchmarks")
+                for p in (REPO / folder).rglob("*.md"))]
 
 
 @pytest.mark.parametrize("doc", DOCS)
