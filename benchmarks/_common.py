@@ -4,8 +4,16 @@ Markdown table each script prints with ``--markdown`` (read by ``benchmarks/coll
 import os
 import platform
 import resource
+import subprocess
 import sys
+import tempfile
 import time
+import tomllib
+from pathlib import Path
+
+#: CONTACT's case: a rigid paraboloid rolling with friction at a creepage on a thick
+#: elastic layer (61 x 61 nodes at its own 0.2 mm)
+PARABOLOID = Path(__file__).resolve().parents[1] / "examples" / "elastic-paraboloid-creepage.toml"
 
 
 def __getattr__(name: str):
@@ -50,6 +58,33 @@ def timed(fn, repeat=5):
         times.append(time.perf_counter() - t)
     times.sort()
     return first, times[len(times) // 2] if times else first, out
+
+
+def paraboloid_grid(spacing: float) -> list:
+    """``--set`` arguments that put :data:`PARABOLOID` on nodes ``spacing`` (m) apart with
+    the truncation ``Nt = L / 2a`` (``L`` the case file's period)."""
+    period = tomllib.loads(PARABOLOID.read_text())["grid"]["period"]
+    return ["--set", f"grid.spacing={spacing!r}", "--set", f"grid.truncation={round(period / (2 * spacing))}"]
+
+
+def run_child(cmd: list, env: dict, cwd: Path, cpu: int | None = None) -> tuple[float, float, float, str]:
+    """``cmd`` run to its end (on CPU ``cpu`` alone when given): its wall and CPU seconds
+    (user + system, every thread), its peak resident memory (MiB; it reads at least the
+    parent's own at the fork) and its standard output. Raises SystemExit with its
+    standard error when it fails."""
+    with tempfile.TemporaryFile() as out, tempfile.TemporaryFile() as err:
+        pin = (lambda: os.sched_setaffinity(0, {cpu})) if cpu is not None else None
+        t = time.perf_counter()
+        proc = subprocess.Popen(cmd, cwd=cwd, env=env, stdin=subprocess.DEVNULL, stdout=out, stderr=err,
+                                preexec_fn=pin)
+        _, status, usage = os.wait4(proc.pid, 0)
+        wall = time.perf_counter() - t
+        proc.returncode = os.waitstatus_to_exitcode(status)
+        out.seek(0)
+        err.seek(0)
+        if proc.returncode != 0:
+            raise SystemExit(f"{' '.join(map(str, cmd))} exited {proc.returncode}:\n{err.read().decode()[-3000:]}")
+        return wall, usage.ru_utime + usage.ru_stime, usage.ru_maxrss / 1024, out.read().decode()
 
 
 def markdown_mode() -> bool:

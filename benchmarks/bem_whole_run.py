@@ -30,18 +30,13 @@ for ``benchmarks/collect.py``.
 import argparse
 import json
 import os
-import resource
 import statistics
-import subprocess
 import sys
-import time
 from pathlib import Path
 
-from _common import machine, markdown_mode, markdown_table, reporter
+from _common import PARABOLOID as CASE, machine, markdown_mode, markdown_table, paraboloid_grid, reporter, run_child
 
 ROOT = Path(__file__).resolve().parents[1]
-CASE = ROOT / "examples" / "elastic-paraboloid-creepage.toml"
-PERIOD, MU, LOAD = 0.6, 0.2, 100.0  # the case file's period (m), mu and load (N)
 BEM = [sys.executable, "-m", "bem.cli", "solve"]
 START = [sys.executable, "-c", "pass"]
 #: numpy loaded as ``bem`` loads it: one BLAS thread from the start (:mod:`bem.threads`)
@@ -85,22 +80,14 @@ def user_environment() -> dict:
 
 
 def timed_process(cmd: list) -> tuple[float, float, str]:
-    """``cmd`` run to completion: (wall s, CPU s of the child, its stdout)."""
-    before = resource.getrusage(resource.RUSAGE_CHILDREN)
-    t = time.perf_counter()
-    done = subprocess.run(cmd, capture_output=True, text=True, env=user_environment(), cwd=ROOT)
-    wall = time.perf_counter() - t
-    after = resource.getrusage(resource.RUSAGE_CHILDREN)
-    if done.returncode != 0:
-        raise SystemExit(f"{' '.join(cmd)} exited {done.returncode}:\n{done.stderr}")
-    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
-    return wall, cpu, done.stdout
+    """``cmd`` run to completion in the user's environment: (wall s, CPU s, its stdout)."""
+    wall, cpu, _, out = run_child(cmd, user_environment(), ROOT)
+    return wall, cpu, out
 
 
 def run(spacing: float, repeat: int) -> list:
     """One row of the summary: the medians at node spacing ``spacing`` (m)."""
-    truncation = int(round(PERIOD / (2 * spacing)))
-    sets = ["--set", f"grid.spacing={spacing!r}", "--set", f"grid.truncation={truncation}"]
+    sets = paraboloid_grid(spacing)
     alone = BEM + [str(CASE), *sets, "--json", "--quiet", "--no-error-estimate"]
     default = BEM + [str(CASE), *sets, "--json", "--quiet"]
     modules = timed_process([sys.executable, "-c", LOADED, "solve", str(CASE), *sets, "--quiet",
@@ -126,13 +113,13 @@ def run(spacing: float, repeat: int) -> list:
     timing = {k: med(r[2]["timings_s"][k] for r in runs) for k in ("kernel_s", "solve_s", "energy_s")}
     wall = med(r[0] for r in runs)
     answer = runs[-1][2]
-    nodes = int(round(2 * 6.0e-3 / spacing)) + 1
+    (nodes, _), (truncation, _) = answer["grid"]["nodes"], answer["grid"]["truncation"]
     return [f"{spacing * 1e3:g} mm, {nodes} x {nodes}, Nt = {truncation}", f"{wall:.3f}",
             f"{med(r[1] for r in runs):.3f}",
             f"{timing['kernel_s']:.3f}", f"{timing['solve_s']:.3f}", f"{timing['energy_s']:.4f}",
             f"{wall - sum(timing.values()):.3f}", f"{med(starts):.3f}", f"{med(numpys) - med(starts):.3f}",
             f"{med(ours) - med(numpys):.3f} ({med(classes):.3f})", f"{med(defaults):.2f}",
-            f"{answer['driving_force'] / (MU * LOAD):.4f}", f"{answer['stick_fraction']:.3f}"]
+            f"{answer['driving_force'] / (answer['mu'] * answer['load']):.4f}", f"{answer['stick_fraction']:.3f}"]
 
 
 def main() -> None:

@@ -36,31 +36,24 @@ import os
 import random
 import shutil
 import statistics
-import subprocess
 import sys
 import tempfile
-import time
+import tomllib
 from pathlib import Path
 
-from _common import machine, markdown_mode, markdown_table, peak_rss_mb, reporter
+from _common import (PARABOLOID, machine, markdown_mode, markdown_table, paraboloid_grid, peak_rss_mb, reporter,
+                     run_child)
 
 ROOT = Path(__file__).resolve().parents[1]
 INPUTS = ROOT / "benchmarks" / "contact"
-PARABOLOID = ROOT / "examples" / "elastic-paraboloid-creepage.toml"
-MU, LOAD, RADIUS_MM = 0.2, 100.0, 20.0  # the paraboloid cases' mu, load (N) and radius (mm)
-
-
-def _fine(spacing: float) -> list:
-    return ["--set", f"grid.spacing={spacing!r}", "--set", f"grid.truncation={round(0.6 / (2 * spacing))}"]
-
 
 #: name: (our case file and --set arguments, CONTACT's input, answer kind, default pairs)
 CASES = {
     "paraboloid-0.2mm": ([PARABOLOID], "paraboloid_0p2mm_gdsteady", "friction", 30),
     "paraboloid-0.2mm-steadygs": ([PARABOLOID], "paraboloid_0p2mm_steadygs", "friction", 10),
-    "paraboloid-0.1mm": ([PARABOLOID, *_fine(0.1e-3)], "paraboloid_0p1mm_gdsteady", "friction", 10),
-    "paraboloid-0.1mm-steadygs": ([PARABOLOID, *_fine(0.1e-3)], "paraboloid_0p1mm_steadygs", "friction", 3),
-    "paraboloid-0.05mm": ([PARABOLOID, *_fine(0.05e-3)], "paraboloid_0p05mm_gdsteady", "friction", 5),
+    "paraboloid-0.1mm": ([PARABOLOID, *paraboloid_grid(0.1e-3)], "paraboloid_0p1mm_gdsteady", "friction", 10),
+    "paraboloid-0.1mm-steadygs": ([PARABOLOID, *paraboloid_grid(0.1e-3)], "paraboloid_0p1mm_steadygs", "friction", 3),
+    "paraboloid-0.05mm": ([PARABOLOID, *paraboloid_grid(0.05e-3)], "paraboloid_0p05mm_gdsteady", "friction", 5),
     "sls-halfspace": ([INPUTS / "sls-halfspace.toml"], "sls_halfspace", "rolling", 5),
 }
 #: largest relative difference of the answers (Fx / (mu P), R_r) for the two programs to count
@@ -78,23 +71,9 @@ def environment() -> dict:
     return {**env, **THREADS}
 
 
-def timed(cmd: list, cwd: Path, cpu: int | None) -> tuple[float, float]:
-    """``cmd`` run to its end, its output discarded: (wall s, peak resident memory MiB of
-    that process). Raises SystemExit when it fails."""
-    pin = (lambda: os.sched_setaffinity(0, {cpu})) if cpu is not None else None
-    t = time.perf_counter()
-    proc = subprocess.Popen(cmd, cwd=cwd, env=environment(), stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
-                            stderr=subprocess.DEVNULL, preexec_fn=pin)
-    _, status, usage = os.wait4(proc.pid, 0)
-    wall = time.perf_counter() - t
-    proc.returncode = os.waitstatus_to_exitcode(status)
-    if proc.returncode != 0:
-        raise SystemExit(f"{' '.join(map(str, cmd))} exited {proc.returncode}")
-    return wall, usage.ru_maxrss / 1024
-
-
-def contact_answer(out: Path, kind: str, mat: Path) -> dict:
-    """CONTACT's answer from its output ``out`` (and its field file ``mat`` for ``R_r``)."""
+def contact_answer(out: Path, kind: str, mat: Path, radius_mm: float) -> dict:
+    """CONTACT's answer from its output ``out`` (and its field file ``mat`` for ``R_r`` of
+    the paraboloid of radius ``radius_mm``)."""
     lines = out.read_text(errors="replace").splitlines()
 
     def after(head: str) -> list:
@@ -106,12 +85,12 @@ def contact_answer(out: Path, kind: str, mat: Path) -> dict:
     _, ncon, nadh = (int(v) for v in after("NPOT NCON NADH")[:3])  # potential, contact, adhesion (stick)
     if kind == "friction":  # its FX is our driving force with the opposite sign (its convention)
         return {"Fx / (mu P)": -float(after("FN/G FX/FSTAT/FN")[1]), "contact": ncon, "stick fraction": nadh / ncon}
-    return {"R_r (N)": rolling_resistance(mat), "contact": ncon}
+    return {"R_r (N)": rolling_resistance(mat, radius_mm), "contact": ncon}
 
 
-def rolling_resistance(mat: Path) -> float:
+def rolling_resistance(mat: Path, radius_mm: float) -> float:
     """``sum p x dA / R`` (N) of a CONTACT field file (mm, N/mm^2): the frictionless rolling
-    resistance of the paraboloid of radius :data:`RADIUS_MM`."""
+    resistance of the paraboloid of radius ``radius_mm``."""
     lines = mat.read_text().splitlines()
     head = next(k for k, line in enumerate(lines) if line.split()[1:3] == ["MX", "MY"])
     mx, _, xl, _, dx, dy = (float(v) for v in lines[head + 1].split()[:6])
@@ -122,19 +101,16 @@ def rolling_resistance(mat: Path) -> float:
             fields = line.split()
             i, pn = int(fields[0]), float(fields[4])
             moment += pn * (xl + ((i - 1) % int(mx) + 0.5) * dx)
-    return moment * dx * dy / RADIUS_MM
+    return moment * dx * dy / radius_mm
 
 
 def our_answer(args: list, kind: str) -> dict:
     cmd = [sys.executable, "-m", "bem.cli", "solve", *map(str, args), "--quiet", "--no-error-estimate", "--json"]
-    done = subprocess.run(cmd, capture_output=True, text=True, env=environment(), cwd=ROOT)
-    if done.returncode != 0:
-        raise SystemExit(f"{' '.join(cmd)} exited {done.returncode}:\n{done.stderr}")
-    r = json.loads(done.stdout)
+    r = json.loads(run_child(cmd, environment(), ROOT)[3])
     ax, ay = r["grid"]["spacing"]
     nodes = round(r["contact_area"] / (ax * ay))
     if kind == "friction":
-        return {"Fx / (mu P)": r["driving_force"] / (MU * LOAD), "contact": nodes,
+        return {"Fx / (mu P)": r["driving_force"] / (r["mu"] * r["load"]), "contact": nodes,
                 "stick fraction": r["stick_fraction"]}
     return {"R_r (N)": r["rolling_resistance"], "contact": nodes}
 
@@ -155,15 +131,17 @@ def run(name: str, contact: Path, pairs: int, cpu: int | None, scratch: Path) ->
     times = {"ours": [], "theirs": []}
     peaks = {"ours": [], "theirs": []}
     for cmd in (ours, theirs):  # warm-up: bytecode written, files in the page cache
-        timed(cmd, ROOT, cpu)
+        run_child(cmd, environment(), ROOT, cpu)
     for i in range(pairs):
         order = (("ours", ours), ("theirs", theirs)) if i % 2 == 0 else (("theirs", theirs), ("ours", ours))
         for who, cmd in order:
-            wall, peak = timed(cmd, ROOT, cpu)
+            wall, _, peak, _ = run_child(cmd, environment(), ROOT, cpu)
             times[who].append(wall)
             peaks[who].append(peak)
         say(f"{name}, pair {i + 1}: ours {times['ours'][-1]:.3f} s, CONTACT {times['theirs'][-1]:.3f} s")
-    a, b = our_answer(args, kind), contact_answer(scratch / f"{stem}.out", kind, scratch / f"{stem}.0001.mat")
+    radius_mm = 1e3 * tomllib.loads(Path(args[0]).read_text())["indenter"]["radius"]
+    a = our_answer(args, kind)
+    b = contact_answer(scratch / f"{stem}.out", kind, scratch / f"{stem}.0001.mat", radius_mm)
     key = next(iter(a))
     diff = abs(a[key] - b[key]) / abs(b[key])
     if diff > AGREE[kind]:
